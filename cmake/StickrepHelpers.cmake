@@ -1,0 +1,44 @@
+# Small helpers so every folder declares its targets the same way.
+
+# stickrep_add_library(NAME SOURCES ... [DEPS ...])
+# A static library whose headers are included as "<folder>/<file>.h" from components/.
+function(stickrep_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR}/components)
+  target_link_libraries(${name} PUBLIC ${ARG_DEPS})
+  target_compile_definitions(${name} PRIVATE STICKREP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+endfunction()
+
+# stickrep_add_gtest(NAME SOURCES ... [DEPS ...] [LABELS ...])
+# A GoogleTest executable in build/bin whose tests are registered one by one with ctest.
+function(stickrep_add_gtest name)
+  if(NOT STICKREP_BUILD_TESTS)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE STICKREP_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                                             STICKREP_BINARY_DIR="${CMAKE_BINARY_DIR}")
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+endfunction()
+
+# stickrep_add_benchmark(NAME SOURCES ... [DEPS ...])
+function(stickrep_add_benchmark name)
+  if(NOT STICKREP_BUILD_BENCHMARKS)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} benchmark::benchmark)
+  target_compile_definitions(${name} PRIVATE STICKREP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+endfunction()
+
+# stickrep_add_program(NAME SOURCES ... [DEPS ...]) — an executable in build/bin.
+function(stickrep_add_program name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  target_compile_definitions(${name} PRIVATE STICKREP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+endfunction()
