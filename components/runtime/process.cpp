@@ -1,0 +1,134 @@
+#include "runtime/process.h"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include "common/input_error.h"
+#include "runtime/endpoint.h"
+#include "runtime/status_reporter.h"
+
+namespace stickrep::runtime {
+
+void SampleCounters::Drop(const std::string& topic, const std::string& reason) {
+  dropped_++;
+  const uint64_t n = ++by_reason_[topic + ": " + reason];
+  if (n <= 3 || n % 100 == 0) {
+    log_->warn("dropped a sample on {}: {} ({} so far for this reason)", topic, reason, n);
+  }
+}
+
+std::atomic<bool>& KeepRunning() {
+  static std::atomic<bool> keep_running{true};
+  return keep_running;
+}
+
+namespace {
+void HandleSignal(int) { KeepRunning() = false; }
+}  // namespace
+
+void InstallSignalHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = HandleSignal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+int64_t WallClockNowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory& make_node) {
+  CLI::App app{"StickRep " + name + " process"};
+  std::string system_file = DefaultConfigDir() + "/system.yaml";
+  std::string config_file = DefaultConfigDir() + "/" + name + ".yaml";
+  int domain_override = -1;
+  double run_for_s = 0.0;
+  std::string log_level;
+  app.add_option("--system", system_file, "deployment settings (domain, QoS file, map, robot)");
+  app.add_option("--config", config_file, "this process's settings (top-level key '" + name + "')");
+  app.add_option("--domain", domain_override, "DDS domain id, overriding the system file")
+      ->check(CLI::Range(0, 232));
+  app.add_option("--run-for", run_for_s, "stop by itself after this many seconds (0: run until "
+                                         "SIGINT/SIGTERM)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--log-level", log_level, "trace, debug, info, warn or error")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+
+  auto log = spdlog::stderr_color_mt(name);
+  log->set_pattern("%H:%M:%S.%e [%n] %^%l%$ %v");
+  InstallSignalHandlers();
+
+  std::unique_ptr<SystemConfig> system;
+  std::unique_ptr<Participant> participant;
+  std::unique_ptr<ProcessNode> node;
+  Executor executor;
+  SampleCounters counters(log);
+  try {
+    system = std::make_unique<SystemConfig>(SystemConfig::LoadFile(system_file));
+    if (domain_override >= 0) system->domain_id = domain_override;
+    log->set_level(spdlog::level::from_str(log_level.empty() ? system->log_level : log_level));
+    QosCatalog catalog = QosCatalog::LoadFile(system->qos_file);
+    const StrictYaml config_root = StrictYaml::LoadFile(config_file);
+    const StrictYaml config = config_root.Child(name);
+    config_root.Finish();
+
+    participant = std::make_unique<Participant>(
+        ParticipantConfig{system->domain_id, "stickrep-" + name, system->fastdds_profile_xml,
+                          system->fastdds_profile_name},
+        std::move(catalog));
+    StatusReporter status(*participant, name, counters);
+    NodeContext ctx{name,   *participant, executor, log, *system,
+                    config, counters,     WallClockNowNs};
+    node = make_node();
+    node->Configure(ctx);
+    status.Publish(StatusReporter::State::kInactive, "configured");
+    log->info("configured on domain {} ({})", system->domain_id, config_file);
+
+    node->Activate();
+    status.Publish(StatusReporter::State::kActive, "active");
+    executor.AddTimer(1.0, [&] { status.Publish(StatusReporter::State::kActive, "active"); });
+    log->info("active");
+    const auto until = run_for_s > 0.0
+                           ? Executor::Clock::now() +
+                                 std::chrono::duration_cast<Executor::Clock::duration>(
+                                     std::chrono::duration<double>(run_for_s))
+                           : Executor::Clock::time_point::max();
+    executor.Spin(KeepRunning(), until);
+
+    node->Deactivate();
+    status.Publish(StatusReporter::State::kFinalized, "stopped");
+    const std::string summary = node->Summary();
+    log->info("stopped: {}{}{} samples in, {} out, {} dropped", summary,
+              summary.empty() ? "" : "; ", counters.in(), counters.out(), counters.dropped());
+    node.reset();
+  } catch (const InputError& e) {
+    log->error("{}", e.what());
+    node.reset();
+    participant.reset();
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    log->error("failed: {}", e.what());
+    node.reset();
+    participant.reset();
+    return 1;
+  }
+  participant.reset();
+  return 0;
+}
+
+}  // namespace stickrep::runtime
