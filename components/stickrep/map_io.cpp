@@ -1,0 +1,377 @@
+#include "stickrep/map_io.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/strict_yaml.h"
+
+namespace stickrep::map {
+
+namespace {
+
+// Ring ids, names and patterns are single words so that they read well in messages and
+// reports and never need quoting.
+bool IsIdentifier(const std::string& s) {
+  if (s.empty() || s.size() > 64) return false;
+  for (char c : s) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+std::string DoorClassList() { return "30, 32, 36, 40, 30/30, 36/36"; }
+
+// Three numbers under `key` (a YAML sequence), e.g. xyz_in: [x, y, z].
+void ReadTriple(const StrictYaml& y, const std::string& key, double out[3]) {
+  const std::vector<StrictYaml> items = y.Sequence(key);
+  if (items.size() != 3) {
+    y.Fail(key, "expected a list of 3 numbers, got " + std::to_string(items.size()));
+  }
+  for (int i = 0; i < 3; ++i) {
+    out[i] = items[i].As<double>();
+    if (std::abs(out[i]) > 1e7) y.Fail(key, "coordinate out of range (|value| > 1e7)");
+  }
+}
+
+struct LoadedEdge {
+  Edge edge;
+  int line = 0;
+};
+
+Node ReadNode(const StrictYaml& y) {
+  Node n;
+  n.angle_deg = y.Get<double>("angle_deg", 0.0, 360.0, "deg");
+  double xyz[3];
+  ReadTriple(y, "xyz_in", xyz);
+  n.x_in = xyz[0];
+  n.y_in = xyz[1];
+  n.z_in = xyz[2];
+  if (y.Has("abg_deg")) {
+    double abg[3];
+    ReadTriple(y, "abg_deg", abg);
+    for (int i = 0; i < 3; ++i) {
+      if (abg[i] < -360.0 || abg[i] > 360.0) y.Fail("abg_deg", "angles must lie in [-360, 360]");
+    }
+    n.alpha_deg = abg[0];
+    n.beta_deg = abg[1];
+    n.gamma_deg = abg[2];
+  } else {
+    y.GetOr<std::string>("abg_deg", "");
+  }
+  n.artificial = y.GetOr<bool>("artificial", false);
+  y.Finish();
+  return n;
+}
+
+Edge ReadEdge(const StrictYaml& y) {
+  Edge e;
+  const std::string type_name = y.Get<std::string>("type");
+  const auto type = ParseEdgeType(type_name);
+  if (!type) {
+    y.Fail("type", "unknown edge type '" + type_name +
+                       "' (corner, doorway, elevator, hallway, pattern, stairwell)");
+  }
+  e.type = *type;
+  if (e.IsDoor()) {
+    const std::string cls = y.Get<std::string>("class");
+    const auto door_class = ParseDoorClass(cls);
+    if (!door_class) {
+      y.Fail("class", "door class '" + cls + "' is not a legal door width (" + DoorClassList() +
+                          " in)");
+    }
+    e.door_class = *door_class;
+    e.metric_in = DoorClassWidthIn(*door_class);
+    if (y.Has("metric_in")) {
+      const double m = y.Get<double>("metric_in");
+      if (std::abs(m - e.metric_in) > 0.5) {
+        y.Fail("metric_in", "a door of class " + cls + " is " + FormatNumber(e.metric_in) +
+                                " in wide, not " + FormatNumber(m));
+      }
+    }
+  } else {
+    if (y.Has("class")) y.Fail("class", "only doorway edges have a door class");
+    e.metric_in = y.Get<double>("metric_in");
+    if (!(e.metric_in > 0.0)) {
+      y.Fail("metric_in", "metric must be > 0 in, got " + FormatNumber(e.metric_in));
+    }
+    if (e.metric_in > 1e6) y.Fail("metric_in", "metric above 1e6 in: not a building edge");
+  }
+  e.prototype = DefaultPrototype(e.type);
+  if (y.Has("prototype")) {
+    const std::string p = y.Get<std::string>("prototype");
+    const auto prototype = ParsePrototype(p);
+    if (!prototype) {
+      y.Fail("prototype", "unknown prototype '" + p + "' (doorjam, wallsegment, pattern)");
+    }
+    if ((e.type == EdgeType::kDoorway && *prototype != Prototype::kDoorjam) ||
+        (e.type == EdgeType::kHallway && *prototype != Prototype::kWallsegment)) {
+      y.Fail("prototype", std::string("a ") + EdgeTypeName(e.type) + " edge cannot have prototype " +
+                              p);
+    }
+    e.prototype = *prototype;
+  }
+  if (y.Has("pattern")) {
+    e.pattern = y.Get<std::string>("pattern");
+    if (!IsIdentifier(e.pattern)) {
+      y.Fail("pattern", "a pattern is one word of letters, digits, '_', '-' or '.'");
+    }
+  }
+  y.Finish();
+  return e;
+}
+
+double Distance(const Node& a, const Node& b) {
+  return std::sqrt((a.x_in - b.x_in) * (a.x_in - b.x_in) + (a.y_in - b.y_in) * (a.y_in - b.y_in) +
+                   (a.z_in - b.z_in) * (a.z_in - b.z_in));
+}
+
+Ring ReadRing(const StrictYaml& y, std::vector<int>* node_lines) {
+  Ring ring;
+  ring.id = y.Get<std::string>("id");
+  if (!IsIdentifier(ring.id)) {
+    y.Fail("id", "a ring id is one word of letters, digits, '_', '-' or '.' (at most 64)");
+  }
+  ring.closed = y.Get<bool>("closed");
+  const StrictYaml path = y.Child("path");
+  const std::vector<StrictYaml> items = path.Elements();
+  std::vector<int> edge_lines;
+  bool expect_node = true;
+  for (const StrictYaml& item : items) {
+    if (!item.IsMap() || item.Keys().size() != 1) {
+      throw InputError(item.file(), item.line(), item.path(),
+                       "each path item is a mapping with one key, 'node' or 'edge'");
+    }
+    const std::string kind = item.Keys().front();
+    if (kind != "node" && kind != "edge") {
+      throw InputError(item.file(), item.line(), item.path() + "." + kind,
+                       "unknown key (a path item is 'node' or 'edge')");
+    }
+    if ((kind == "node") != expect_node) {
+      throw InputError(item.file(), item.line(), item.path(),
+                       std::string("expected a ") + (expect_node ? "node" : "edge") +
+                           ": nodes and edges alternate, starting with a node");
+    }
+    const StrictYaml body = item.Child(kind);
+    if (kind == "node") {
+      ring.nodes.push_back(ReadNode(body));
+      node_lines->push_back(body.line());
+    } else {
+      ring.edges.push_back(ReadEdge(body));
+      edge_lines.push_back(body.line());
+    }
+    expect_node = !expect_node;
+  }
+  if (ring.edges.empty()) path.Fail("", "a ring needs at least one edge");
+  if (ring.closed && expect_node == false) {
+    path.Fail("", "a closed ring ends with an edge (node 0 closes it); this one ends with a node."
+                  " Set closed: false for an open ring");
+  }
+  if (!ring.closed && expect_node == true) {
+    path.Fail("", "an open ring ends with a node (its far end); this one ends with an edge");
+  }
+  // The coordinates must agree with the metrics; for a closed ring this also checks that the
+  // last edge really returns to node 0.
+  for (int i = 0; i < ring.EdgeCount(); ++i) {
+    const Node& a = ring.nodes[i];
+    const Node& b = ring.nodes[(i + 1) % ring.NodeCount()];
+    const double d = Distance(a, b);
+    const double m = ring.edges[i].metric_in;
+    if (std::abs(d - m) > std::max(kGeometryToleranceIn, kGeometryToleranceRel * m)) {
+      std::string reason = "edge " + std::to_string(i) + " is " + FormatNumber(m) +
+                           " in but its nodes are " + FormatNumber(d) + " in apart";
+      if (ring.closed && i + 1 == ring.EdgeCount()) {
+        reason += " (the ring does not close; set closed: false if it is open)";
+      }
+      throw InputError(y.file(), edge_lines[i], y.path() + ".path", reason);
+    }
+  }
+  y.Finish();
+  return ring;
+}
+
+}  // namespace
+
+Map ParseMap(const std::string& text, const std::string& name) {
+  const StrictYaml root = StrictYaml::LoadString(text, name);
+  const int version = root.Get<int>("stickrep_map");
+  if (version != kMapFormatVersion) {
+    root.Fail("stickrep_map", "unsupported map format version " + std::to_string(version) +
+                                  " (this build reads " + std::to_string(kMapFormatVersion) + ")");
+  }
+  MapInfo info;
+  info.name = root.Get<std::string>("name");
+  if (!IsIdentifier(info.name)) root.Fail("name", "a map name is one word (letters, digits, _-.)");
+  info.description = root.GetOr<std::string>("description", "");
+  if (root.Has("generator")) {
+    const StrictYaml g = root.Child("generator");
+    info.generator = g.Get<std::string>("program");
+    info.seed = g.Get<std::uint64_t>("seed");
+    g.Finish();
+  } else {
+    root.GetOr<std::string>("generator", "");
+  }
+
+  std::vector<Ring> rings;
+  std::map<std::string, int> ring_index;
+  std::vector<std::vector<int>> node_lines;
+  for (const StrictYaml& ry : root.Sequence("rings")) {
+    node_lines.emplace_back();
+    Ring ring = ReadRing(ry, &node_lines.back());
+    if (!ring_index.emplace(ring.id, static_cast<int>(rings.size())).second) {
+      ry.Fail("id", "ring id '" + ring.id + "' is used by an earlier ring");
+    }
+    rings.push_back(std::move(ring));
+  }
+  if (rings.empty()) root.Fail("rings", "a map needs at least one ring");
+
+  std::vector<Join> joins;
+  if (root.Has("joins")) {
+    for (const StrictYaml& jy : root.Sequence("joins")) {
+      Join j;
+      j.ring = jy.Get<std::string>("ring");
+      j.to_ring = jy.Get<std::string>("to_ring");
+      const auto a = ring_index.find(j.ring);
+      if (a == ring_index.end()) jy.Fail("ring", "no ring with id '" + j.ring + "'");
+      const auto b = ring_index.find(j.to_ring);
+      if (b == ring_index.end()) jy.Fail("to_ring", "no ring with id '" + j.to_ring + "'");
+      if (a->second == b->second) jy.Fail("to_ring", "a ring cannot be joined to itself");
+      const Ring& ra = rings[a->second];
+      const Ring& rb = rings[b->second];
+      j.node = jy.Get<int>("node", 0, ra.NodeCount() - 1, "(node index)");
+      j.to_node = jy.Get<int>("to_node", 0, rb.NodeCount() - 1, "(node index)");
+      if (!ra.nodes[j.node].artificial) {
+        jy.Fail("node", "node " + std::to_string(j.node) + " of ring '" + j.ring +
+                            "' is not artificial; rings are joined at artificial nodes (line " +
+                            std::to_string(node_lines[a->second][j.node]) + ")");
+      }
+      jy.Finish();
+      joins.push_back(j);
+    }
+  } else {
+    root.GetOr<std::string>("joins", "");
+  }
+  root.Finish();
+  try {
+    return Map(std::move(info), std::move(rings), std::move(joins));
+  } catch (const std::invalid_argument& e) {
+    // The checks above should have caught everything with a line number already.
+    throw InputError(name, 0, "", e.what());
+  }
+}
+
+Map LoadMap(const std::string& path) {
+  // Size and type are checked before reading so that a huge file of garbage is refused
+  // without loading it; NUL bytes and YAML syntax are checked by StrictYaml::LoadString.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(path, 0, "", "no such file (or not a regular file)");
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path, 0, "", "cannot read the file size: " + ec.message());
+  if (size > kMaxYamlFileBytes) {
+    throw InputError(path, 0, "",
+                     "file is " + std::to_string(size) + " bytes; a map file may be " +
+                         std::to_string(kMaxYamlFileBytes) + " bytes at most");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open the file for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseMap(text.str(), path);
+}
+
+std::string FormatNumber(double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.3f", value);
+  std::string s = buf;
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+namespace {
+
+std::string Quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string WriteMapYaml(const Map& map) {
+  const MapInfo& info = map.info();
+  std::ostringstream out;
+  out << "# StickRep map (format: maps/README.md). Lengths in inches, angles in degrees.\n";
+  if (!info.generator.empty()) {
+    out << "# Generated; edit the generator, not this file, and regenerate with the seed below.\n";
+  }
+  out << "stickrep_map: " << kMapFormatVersion << "\n";
+  out << "name: " << info.name << "\n";
+  if (!info.description.empty()) out << "description: " << Quote(info.description) << "\n";
+  if (!info.generator.empty()) {
+    out << "generator:\n  program: " << Quote(info.generator) << "\n";
+    out << "  seed: " << info.seed.value_or(0) << "\n";
+  }
+  out << "rings:\n";
+  for (const Ring& ring : map.rings()) {
+    out << "  - id: " << ring.id << "\n";
+    out << "    closed: " << (ring.closed ? "true" : "false") << "\n";
+    out << "    path:\n";
+    for (int i = 0; i < ring.NodeCount(); ++i) {
+      const Node& n = ring.nodes[i];
+      out << "      - node: {angle_deg: " << FormatNumber(n.angle_deg) << ", xyz_in: ["
+          << FormatNumber(n.x_in) << ", " << FormatNumber(n.y_in) << ", " << FormatNumber(n.z_in)
+          << "]";
+      if (n.alpha_deg != 0.0 || n.beta_deg != 0.0 || n.gamma_deg != 0.0) {
+        out << ", abg_deg: [" << FormatNumber(n.alpha_deg) << ", " << FormatNumber(n.beta_deg)
+            << ", " << FormatNumber(n.gamma_deg) << "]";
+      }
+      if (n.artificial) out << ", artificial: true";
+      out << "}\n";
+      if (i >= ring.EdgeCount()) break;
+      const Edge& e = ring.edges[i];
+      out << "      - edge: {type: " << EdgeTypeName(e.type);
+      if (e.IsDoor()) {
+        out << ", class: " << Quote(DoorClassName(*e.door_class));
+      } else {
+        out << ", metric_in: " << FormatNumber(e.metric_in);
+      }
+      if (e.prototype != DefaultPrototype(e.type)) out << ", prototype: " << PrototypeName(e.prototype);
+      if (!e.pattern.empty()) out << ", pattern: " << e.pattern;
+      out << "}\n";
+    }
+  }
+  if (!map.joins().empty()) {
+    out << "joins:\n";
+    for (const Join& j : map.joins()) {
+      out << "  - {ring: " << j.ring << ", node: " << j.node << ", to_ring: " << j.to_ring
+          << ", to_node: " << j.to_node << "}\n";
+    }
+  }
+  return out.str();
+}
+
+void SaveMap(const Map& map, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << WriteMapYaml(map);
+  if (!out) throw std::runtime_error("error writing " + path);
+}
+
+}  // namespace stickrep::map
