@@ -28,7 +28,7 @@ struct CameraConfig {
   int image_width_px = 512;         // not in the text; see configs/robot.yaml
   int image_height_px = 480;        // not in the text
   double focal_length_mm = 6.0;     // §4.1.1: "the 6mm lens"
-  double pixel_pitch_mm = 0.012417; // derived: f * tan(FOV/2) / (width/2)
+  double pixel_pitch_mm = 0.012414; // derived: f * tan(FOV/2) / (width/2)
   int coaxial_sensor = 0;           // the sonar sensor whose axis is the optical axis (C3)
   double offset_forward_in = 0.0;   // camera centre ahead of the ring centre, on the axis
 

@@ -19,7 +19,7 @@ namespace stickrep::sensing {
 struct CameraModel {
   double fov_rad = DegToRad(55.817);
   int width_px = 512;
-  double pitch_over_focal = 0.012417 / 6.0;  // rad per pixel at the image centre
+  double pitch_over_focal = 0.012414 / 6.0;  // rad per pixel at the image centre
 
   static CameraModel FromConfig(const CameraConfig& c);
 
