@@ -1,0 +1,101 @@
+#include "stickrep/map_render.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace stickrep::map {
+
+namespace {
+
+// BGR colours per door class (30, 32, 36, 40, 30/30, 36/36), chosen to stay apart in print.
+const cv::Scalar kDoorColours[kDoorClassCount] = {
+    {0, 140, 255}, {0, 200, 0}, {200, 60, 0}, {0, 0, 220}, {180, 0, 180}, {120, 120, 0}};
+const cv::Scalar kWallColour(60, 60, 60);
+const cv::Scalar kOtherColour(200, 0, 255);
+const cv::Scalar kJoinColour(150, 150, 150);
+
+}  // namespace
+
+void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& options) {
+  double min_x = std::numeric_limits<double>::max(), min_y = min_x;
+  double max_x = std::numeric_limits<double>::lowest(), max_y = max_x;
+  for (const Ring& ring : map.rings()) {
+    for (const Node& n : ring.nodes) {
+      min_x = std::min(min_x, n.x_in);
+      max_x = std::max(max_x, n.x_in);
+      min_y = std::min(min_y, n.y_in);
+      max_y = std::max(max_y, n.y_in);
+    }
+  }
+  const int margin = 40, legend = 70;
+  const double span_x = std::max(1.0, max_x - min_x), span_y = std::max(1.0, max_y - min_y);
+  const double scale = (options.width_px - 2.0 * margin) / span_x;  // px per inch
+  const int height = std::clamp(static_cast<int>(span_y * scale) + 2 * margin + legend, 200, 6000);
+  cv::Mat img(height, options.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  auto px = [&](const Node& n) {
+    return cv::Point(static_cast<int>(std::lround(margin + (n.x_in - min_x) * scale)),
+                     static_cast<int>(std::lround(height - legend - margin - (n.y_in - min_y) * scale)));
+  };
+  for (const Join& j : map.joins()) {
+    const Ring& a = map.ring(map.FindRing(j.ring));
+    const Ring& b = map.ring(map.FindRing(j.to_ring));
+    cv::line(img, px(a.nodes[j.node]), px(b.nodes[j.to_node]), kJoinColour, 1, cv::LINE_AA);
+  }
+  const int door_px = std::max(3, static_cast<int>(std::lround(6.0 * scale)));
+  for (const Ring& ring : map.rings()) {
+    for (int i = 0; i < ring.EdgeCount(); ++i) {
+      const Node& a = ring.nodes[i];
+      const Node& b = ring.nodes[(i + 1) % ring.NodeCount()];
+      const Edge& e = ring.edges[i];
+      if (e.IsDoor()) {
+        cv::line(img, px(a), px(b), kDoorColours[static_cast<int>(*e.door_class)], door_px,
+                 cv::LINE_8);
+      } else if (e.IsWall()) {
+        cv::line(img, px(a), px(b), kWallColour, 1, cv::LINE_AA);
+      } else {
+        cv::line(img, px(a), px(b), kOtherColour, door_px, cv::LINE_8);
+      }
+    }
+    for (const Node& n : ring.nodes) {
+      if (n.artificial) cv::circle(img, px(n), 6, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+    }
+    if (options.label_rings) {
+      cv::putText(img, ring.id, px(ring.nodes[0]) + cv::Point(8, 16), cv::FONT_HERSHEY_SIMPLEX,
+                  0.45, cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
+    }
+  }
+  // Legend and scale bar.
+  int x = margin;
+  const int y = height - legend / 2;
+  for (int k = 0; k < kDoorClassCount; ++k) {
+    cv::line(img, {x, y}, {x + 30, y}, kDoorColours[k], 6);
+    cv::putText(img, std::string("door ") + DoorClassName(static_cast<DoorClass>(k)),
+                {x + 36, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1,
+                cv::LINE_AA);
+    x += 140;
+  }
+  cv::line(img, {x, y}, {x + 30, y}, kWallColour, 1);
+  cv::putText(img, "wall", {x + 36, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  x += 100;
+  cv::line(img, {x, y}, {x + 30, y}, kOtherColour, 6);
+  cv::putText(img, "other type", {x + 36, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  x += 130;
+  cv::circle(img, {x + 6, y}, 6, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+  cv::putText(img, "artificial node / join", {x + 18, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  x += 230;
+  // A scale bar of a round number of feet.
+  double bar_ft = 10;
+  while (bar_ft * 12 * scale < 80) bar_ft *= 2;
+  const int bar_px = static_cast<int>(bar_ft * 12 * scale);
+  cv::line(img, {x, y}, {x + bar_px, y}, cv::Scalar(0, 0, 0), 2);
+  cv::putText(img, cv::format("%.0f ft", bar_ft), {x + bar_px + 6, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  cv::putText(img, map.info().name, {margin, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.7, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  if (!cv::imwrite(path, img)) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace stickrep::map
