@@ -1,0 +1,323 @@
+#include "world/camera_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "common/units.h"
+
+namespace stickrep::world {
+namespace {
+
+// Lambert-like shading: a face seen obliquely is a little darker, so an open leaf and the
+// wall behind it differ even when painted alike.
+constexpr double kAmbientShare = 0.8;
+
+// Gap left around the warped footprint of the output image on the ideal canvas, in pixels,
+// so bilinear sampling never reads past the canvas edge.
+constexpr int kCanvasMarginPx = 2;
+
+}  // namespace
+
+double CameraModel::focal_px() const {
+  return (width_px / 2.0) / std::tan(DegToRad(fov_deg) / 2.0);
+}
+
+CameraRenderer::CameraRenderer(CameraModel model, RenderOptions options)
+    : model_(model), options_(options) {
+  if (!(model_.fov_deg > 1.0 && model_.fov_deg < 170.0) || model_.width_px <= 0 ||
+      model_.height_px <= 0 || options_.supersample < 1 || !(std::abs(model_.roll_deg) < 45.0) ||
+      !(model_.k1 >= -0.3 && model_.k1 <= 0.5) || !(options_.max_range_in > 0.0)) {
+    throw std::invalid_argument(
+        "camera: need 1 < fov_deg < 170, positive image size, supersample >= 1, |roll_deg| < "
+        "45, -0.3 <= k1 <= 0.5, max_range_in > 0");
+  }
+  f_px_ = model_.focal_px();
+  const int w = model_.width_px;
+  const int h = model_.height_px;
+  const double roll = DegToRad(model_.roll_deg);
+  const double c = std::cos(roll);
+  const double s = std::sin(roll);
+
+  // Undo distortion (fixed-point iteration; converges fast for |k1| r^2 << 1) and roll for
+  // every output pixel: its normalised ideal coordinates.
+  cv::Mat ideal_x(h, w, CV_64F);
+  cv::Mat ideal_y(h, w, CV_64F);
+  double xf_min = std::numeric_limits<double>::infinity();
+  double xf_max = -xf_min;
+  double yf_min = xf_min;
+  double yf_max = -xf_min;
+  for (int v = 0; v < h; ++v) {
+    for (int u = 0; u < w; ++u) {
+      const double xd = (u - model_.cx_px()) / f_px_;
+      const double yd = (v - model_.cy_px()) / f_px_;
+      double xr = xd;
+      double yr = yd;
+      for (int it = 0; it < 30; ++it) {
+        const double scale = 1.0 + model_.k1 * (xr * xr + yr * yr);
+        xr = xd / scale;
+        yr = yd / scale;
+      }
+      const double x = c * xr - s * yr;
+      const double y = s * xr + c * yr;
+      ideal_x.at<double>(v, u) = x;
+      ideal_y.at<double>(v, u) = y;
+      xf_min = std::min(xf_min, x * f_px_);
+      xf_max = std::max(xf_max, x * f_px_);
+      yf_min = std::min(yf_min, y * f_px_);
+      yf_max = std::max(yf_max, y * f_px_);
+    }
+  }
+  // Align the canvas grid with the output grid (integer margins) so that without roll and
+  // distortion the warp is an exact copy, not an interpolation.
+  const double left_edge = -w / 2.0;  // x * f of the left side of column 0
+  const double top_edge = -h / 2.0;
+  const int m_left = std::max(0, static_cast<int>(std::ceil(left_edge - xf_min))) + kCanvasMarginPx;
+  const int m_top = std::max(0, static_cast<int>(std::ceil(top_edge - yf_min))) + kCanvasMarginPx;
+  x_min_ = (left_edge - m_left) / f_px_;
+  y_min_ = (top_edge - m_top) / f_px_;
+  canvas_w_ = static_cast<int>(std::ceil(xf_max - x_min_ * f_px_)) + kCanvasMarginPx;
+  canvas_h_ = static_cast<int>(std::ceil(yf_max - y_min_ * f_px_)) + kCanvasMarginPx;
+
+  cv::Mat map_x(h, w, CV_32F);
+  cv::Mat map_y(h, w, CV_32F);
+  for (int v = 0; v < h; ++v) {
+    for (int u = 0; u < w; ++u) {
+      map_x.at<float>(v, u) = static_cast<float>((ideal_x.at<double>(v, u) - x_min_) * f_px_ - 0.5);
+      map_y.at<float>(v, u) = static_cast<float>((ideal_y.at<double>(v, u) - y_min_) * f_px_ - 0.5);
+    }
+  }
+  cv::convertMaps(map_x, map_y, map1_, map2_, CV_16SC2);
+}
+
+Pose2d CameraRenderer::CameraPose(const Pose2d& X_WR) const {
+  const double ct = std::cos(X_WR.theta_rad);
+  const double st = std::sin(X_WR.theta_rad);
+  Pose2d X_WC;
+  X_WC.x_in = X_WR.x_in + ct * model_.mount_forward_in - st * model_.mount_left_in;
+  X_WC.y_in = X_WR.y_in + st * model_.mount_forward_in + ct * model_.mount_left_in;
+  X_WC.theta_rad = std::remainder(X_WR.theta_rad + DegToRad(model_.mount_yaw_deg), 2.0 * kPi);
+  return X_WC;
+}
+
+std::optional<Eigen::Vector2d> CameraRenderer::Project(const Pose2d& X_WC,
+                                                       const Eigen::Vector3d& p_W_in) const {
+  const Eigen::Vector2d a{std::cos(X_WC.theta_rad), std::sin(X_WC.theta_rad)};
+  const Eigen::Vector2d r{a.y(), -a.x()};
+  const Eigen::Vector2d rel = p_W_in.head<2>() - X_WC.position();
+  const double zc = rel.dot(a);
+  if (zc <= 1e-6) return std::nullopt;
+  const double x = rel.dot(r) / zc;
+  const double y = (model_.height_in - p_W_in.z()) / zc;
+  const double roll = DegToRad(model_.roll_deg);
+  const double xr = std::cos(roll) * x + std::sin(roll) * y;
+  const double yr = -std::sin(roll) * x + std::cos(roll) * y;
+  const double k = 1.0 + model_.k1 * (xr * xr + yr * yr);
+  return Eigen::Vector2d{model_.cx_px() + f_px_ * xr * k, model_.cy_px() + f_px_ * yr * k};
+}
+
+std::optional<double> CameraRenderer::ColumnAtCenterRow(const Pose2d& X_WC,
+                                                        const Eigen::Vector2d& p_W_in) const {
+  const Eigen::Vector2d a{std::cos(X_WC.theta_rad), std::sin(X_WC.theta_rad)};
+  const Eigen::Vector2d r{a.y(), -a.x()};
+  const Eigen::Vector2d rel = p_W_in - X_WC.position();
+  const double zc = rel.dot(a);
+  if (zc <= 1e-6) return std::nullopt;
+  // On the centre row the rolled coordinate y_r is 0 (distortion is radial about the
+  // principal point), so the vertical line crosses it at x_r = x / cos(roll).
+  const double xr = (rel.dot(r) / zc) / std::cos(DegToRad(model_.roll_deg));
+  return model_.cx_px() + f_px_ * xr * (1.0 + model_.k1 * xr * xr);
+}
+
+void CameraRenderer::RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Mat* canvas) const {
+  const int ss = options_.supersample;
+  const int cols = canvas_w_ * ss;
+  const int rows = canvas_h_;
+  canvas->create(rows, cols, CV_32F);
+
+  const World& world = scene.world();
+  const std::vector<Panel>& panels = scene.panels();
+  const Eigen::Vector2d origin = X_WC.position();
+  const Eigen::Vector2d a{std::cos(X_WC.theta_rad), std::sin(X_WC.theta_rad)};
+  const Eigen::Vector2d r{a.y(), -a.x()};
+  const double cam_h = model_.height_in;
+  const double ceiling = world.ceiling_height_in;
+  const std::vector<int> near = scene.PanelsNear(origin, a, options_.max_range_in);
+
+  // Per column: the crossings that can be seen, nearest first, cut after the first panel
+  // that spans floor to ceiling (nothing behind it shows).
+  struct Hit {
+    float t;
+    float bottom;
+    float top;
+    float value;
+  };
+  std::vector<Hit> hits;
+  std::vector<int> begin(cols + 1, 0);
+  std::vector<Scene::Crossing> crossings;
+  hits.reserve(static_cast<size_t>(cols) * 3);
+  for (int j = 0; j < cols; ++j) {
+    begin[j] = static_cast<int>(hits.size());
+    const double x = x_min_ + (j + 0.5) / (f_px_ * ss);
+    const Eigen::Vector2d dir = a + x * r;  // unit depth along the optical axis
+    scene.CastAll(origin, dir, options_.max_range_in, &crossings, &near);
+    for (const Scene::Crossing& c : crossings) {
+      const Panel& p = panels[c.panel_index];
+      const double shade = kAmbientShare + (1.0 - kAmbientShare) * c.cos_incidence;
+      hits.push_back({static_cast<float>(c.t), static_cast<float>(p.bottom_in),
+                      static_cast<float>(p.top_in), static_cast<float>(p.intensity * shade)});
+      if (p.bottom_in <= 0.0 && p.top_in >= ceiling) break;
+    }
+  }
+  begin[cols] = static_cast<int>(hits.size());
+
+  const float floor_value = static_cast<float>(world.floor_intensity);
+  const float ceiling_value = static_cast<float>(world.ceiling_intensity);
+  for (int i = 0; i < rows; ++i) {
+    const float y = static_cast<float>(y_min_ + (i + 0.5) / f_px_);  // downward
+    const float h = static_cast<float>(cam_h);
+    const float ceil_f = static_cast<float>(ceiling);
+    float* out = canvas->ptr<float>(i);
+    for (int j = 0; j < cols; ++j) {
+      float value = y > 0.0f ? floor_value : ceiling_value;
+      for (int k = begin[j]; k < begin[j + 1]; ++k) {
+        const Hit& hit = hits[k];
+        const float z = h - y * hit.t;
+        if (z < 0.0f) {
+          value = floor_value;
+          break;
+        }
+        if (z > ceil_f) {
+          value = ceiling_value;
+          break;
+        }
+        if (z >= hit.bottom && z <= hit.top) {
+          value = hit.value;
+          break;
+        }
+      }
+      out[j] = value;
+    }
+  }
+}
+
+RenderedFrame CameraRenderer::Render(const Scene& scene, const Pose2d& X_WR,
+                                     const Illumination& light, std::mt19937_64& rng) const {
+  RenderedFrame frame;
+  const Pose2d X_WC = CameraPose(X_WR);
+  cv::Mat canvas;
+  RenderCanvas(scene, X_WC, &canvas);
+  cv::Mat ideal;
+  if (options_.supersample > 1) {
+    cv::resize(canvas, ideal, cv::Size(canvas_w_, canvas_h_), 0, 0, cv::INTER_AREA);
+  } else {
+    ideal = canvas;
+  }
+  cv::Mat warped;
+  cv::remap(ideal, warped, map1_, map2_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+
+  // Illumination: a gain ramp across the columns, then offset and sensor noise.
+  const int w = model_.width_px;
+  std::vector<float> column_gain(w);
+  for (int u = 0; u < w; ++u) {
+    column_gain[u] =
+        static_cast<float>(light.gain * (1.0 + light.gradient * ((u + 0.5) / w - 0.5)));
+  }
+  cv::Mat noise;
+  if (light.noise_stddev > 0.0) {
+    cv::RNG cv_rng(rng());  // seeded from the caller's generator: no global state
+    noise.create(warped.size(), CV_32F);
+    cv_rng.fill(noise, cv::RNG::NORMAL, 0.0, light.noise_stddev);
+  }
+  const float offset = static_cast<float>(light.offset);
+  for (int v = 0; v < warped.rows; ++v) {
+    float* row = warped.ptr<float>(v);
+    const float* n = noise.empty() ? nullptr : noise.ptr<float>(v);
+    for (int u = 0; u < w; ++u) {
+      row[u] = row[u] * column_gain[u] + offset + (n != nullptr ? n[u] : 0.0f);
+    }
+  }
+  warped.convertTo(frame.image, CV_8U);  // rounds and saturates to 0..255
+  frame.truth = Truth(scene, X_WR);
+  return frame;
+}
+
+FrameTruth CameraRenderer::Truth(const Scene& scene, const Pose2d& X_WR) const {
+  FrameTruth truth;
+  truth.X_WR = X_WR;
+  truth.X_WC = CameraPose(X_WR);
+  const Eigen::Vector2d origin = truth.X_WC.position();
+  const Eigen::Vector2d a{std::cos(truth.X_WC.theta_rad), std::sin(truth.X_WC.theta_rad)};
+  const std::optional<RayHit> axis_hit =
+      scene.Raycast(origin, a, options_.max_range_in, model_.height_in);
+  truth.axis_range_in = axis_hit ? axis_hit->distance_in : std::numeric_limits<double>::quiet_NaN();
+
+  const double tan_roll = std::tan(DegToRad(model_.roll_deg));
+  const Eigen::Vector2d r{a.y(), -a.x()};
+  std::vector<Scene::Crossing> crossings;
+  const std::vector<Panel>& panels = scene.panels();
+  for (int d = 0; d < static_cast<int>(scene.world().doors.size()); ++d) {
+    const auto [p0, p1] = scene.JambPoints(d);
+    std::vector<JambTruth> seen;
+    for (const Eigen::Vector2d& p : {p0, p1}) {
+      const Eigen::Vector2d rel = p - origin;
+      const double depth = rel.dot(a);
+      if (depth < 1.0) continue;
+      const std::optional<double> col = ColumnAtCenterRow(truth.X_WC, p);
+      if (!col || *col < -0.5 || *col > model_.width_px - 0.5) continue;
+      // Height where the centre row meets the jamb line (y = tan(roll) * x, §4.1.1 roll).
+      const double x = rel.dot(r) / depth;
+      const double z = model_.height_in - tan_roll * x * depth;
+      // Hidden when a panel covering the line of sight at that height comes more than 2 in
+      // before the jamb (the frame casing ends at the jamb itself).
+      const double dist = rel.norm();
+      scene.CastAll(origin, rel, 1.0 - 2.0 / dist, &crossings);
+      bool hidden = false;
+      for (const Scene::Crossing& c : crossings) {
+        const Panel& panel = panels[c.panel_index];
+        const double z_at = model_.height_in + (z - model_.height_in) * c.t;
+        if (z_at >= panel.bottom_in && z_at <= panel.top_in) {
+          hidden = true;
+          break;
+        }
+      }
+      if (hidden) continue;
+      JambTruth jamb;
+      jamb.door_index = d;
+      jamb.column_px = *col;
+      jamb.depth_in = depth;
+      jamb.point_W_in = p;
+      seen.push_back(jamb);
+    }
+    if (seen.empty()) continue;
+    std::sort(seen.begin(), seen.end(),
+              [](const JambTruth& l, const JambTruth& rr) { return l.column_px < rr.column_px; });
+    if (seen.size() == 2) {
+      seen.front().image_left = true;
+    } else {
+      // One jamb in view: it is the left one when its partner projects farther right (or
+      // behind the camera on the right-hand side).
+      const Eigen::Vector2d other = (seen.front().point_W_in - p0).norm() < 1e-9 ? p1 : p0;
+      const std::optional<double> other_col = ColumnAtCenterRow(truth.X_WC, other);
+      seen.front().image_left =
+          other_col ? *other_col > seen.front().column_px : (other - origin).dot(r) > 0.0;
+    }
+    const DoorFeature& door = scene.world().doors[d];
+    DoorTruth dt;
+    dt.door_index = d;
+    dt.class_in = DoorClassForWidth(door.width_in);
+    dt.width_in = door.width_in;
+    dt.state = door.state;
+    dt.both_jambs_visible = seen.size() == 2;
+    dt.left_column_px = seen.front().column_px;
+    dt.right_column_px = seen.back().column_px;
+    truth.doors.push_back(dt);
+    for (const JambTruth& j : seen) truth.jambs.push_back(j);
+  }
+  return truth;
+}
+
+}  // namespace stickrep::world
