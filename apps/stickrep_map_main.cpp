@@ -34,8 +34,9 @@ int main(int argc, char** argv) {
   ambiguity->add_flag("--json", amb.json, "JSON output");
   ambiguity->add_option("--png", amb.png, "Write a histogram PNG");
   ambiguity->add_option("--worst", amb.worst, "How many worst starts to list")->check(CLI::Range(0, 100000));
-  ambiguity->add_flag("--partial-first-edge", amb.analysis.partial_first_edge,
-                      "The first wall is only partly seen (its length is unknown)");
+  bool whole_first_edge = false;
+  ambiguity->add_flag("--whole-first-edge", whole_first_edge,
+                      "Sense the first edge whole (default: a first wall's length is unknown)");
   ambiguity->add_flag("--no-angles", no_angles, "Do not compare adjacency angles");
   ambiguity->add_option("--tolerance-pct", tolerance_pct, "Metric tolerance in percent")
       ->check(CLI::Range(0.0, 100.0));
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   if (*ambiguity) {
     amb.analysis.tolerance.metric_rel = tolerance_pct / 100.0;
     amb.analysis.use_angles = !no_angles;
+    amb.analysis.partial_first_edge = !whole_first_edge;
     return tool::Ambiguity(map_path, amb, std::cout, std::cerr);
   }
   if (*render) return tool::Render(map_path, png, std::cout, std::cerr);

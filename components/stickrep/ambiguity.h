@@ -18,9 +18,11 @@ struct AmbiguityOptions {
   MatchTolerance tolerance;  // all zero: exact matching (no sensing error)
   // Compare adjacency angles (sonar-sensed corners). Off: types and metrics only.
   bool use_angles = true;
-  // The robot starts inside its first edge and sees only part of it: a first wall's length is
-  // unknown (any wall matches). Off: the first edge is sensed whole, as in Figure 6.2.
-  bool partial_first_edge = false;
+  // The robot starts at a random point inside its first edge (Figure 6.2 steps 0-1). A door
+  // there is seen whole, but a wall only from the start point on, and only complete features
+  // are matched (§6.4.1), so a first wall matches any wall. Off: the first edge is sensed
+  // whole, as if every start were at a node.
+  bool partial_first_edge = true;
 };
 
 // How one start ended.

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -126,7 +127,7 @@ int NearestNode(const Ring& ring, const Node& to) {
 // few standard lengths, which is what makes a sensed sequence ambiguous (§6.2). The number
 // of distinct lengths per bin is the one free parameter; it is set so that the no-error
 // ambiguity lands near Table 6.22's 5.28 edges.
-constexpr int kEngineeringLengthsPerBin = 2;
+constexpr int kEngineeringLengthsPerBin = 1;
 constexpr double kHallwayWidthIn = 96.0;
 
 enum class SlotRole { kBase, kDepth, kFace };
@@ -136,6 +137,7 @@ struct Slot {
   int ring = 0;
   int side = 0;
   int pair = -1;  // depth walls of one pilaster/alcove share a pair id (equal lengths)
+  int row = -1;   // single walls between doors in one unbroken run along a side
   bool is_long = false;
   double length = 0.0;
 };
@@ -363,7 +365,7 @@ class EngineeringBuilder {
   }
 
   int NewSlot(SlotRole role, int ring, int side, int pair = -1) {
-    slots_.push_back(Slot{role, ring, side, pair, false, 0.0});
+    slots_.push_back(Slot{role, ring, side, pair, -1, false, 0.0});
     return static_cast<int>(slots_.size()) - 1;
   }
 
@@ -400,8 +402,16 @@ class EngineeringBuilder {
       next_angle = corner;
       next_art = ring.art_corner == side;
       const int doors_here = side_doors_[r][side];
+      int row = next_row_++;
       for (int gap = 0; gap <= doors_here; ++gap) {
         emit_wall(SlotRole::kBase);
+        const bool has_events = ev < ring.events.size() && ring.events[ev].side == side &&
+                                ring.events[ev].gap == gap;
+        if (gap > 0 && gap < doors_here && !has_events) {
+          slots_.back().row = row;
+        } else {
+          row = next_row_++;
+        }
         while (ev < ring.events.size() && ring.events[ev].side == side &&
                ring.events[ev].gap == gap) {
           const Event& e = ring.events[ev++];
@@ -532,12 +542,44 @@ class EngineeringBuilder {
         --remaining[b];
       }
     }
+    // Rows of offices: the walls between the doors of one run along a side repeat one length
+    // (§6.2: "36 inch doors embedded in a highly regular metric feature sequence"). Each row,
+    // longest first, takes the commonest length still in the pool; the values themselves are
+    // the census pool, so Table 6.9 is untouched.
+    std::map<int, std::vector<int>> rows;
+    for (int s : base_slots) {
+      if (!slots_[s].is_long && slots_[s].row >= 0) rows[slots_[s].row].push_back(s);
+    }
+    std::vector<std::vector<int>> row_list;
+    for (auto& [id, members] : rows) {
+      if (members.size() >= 2) row_list.push_back(members);
+    }
+    rng_.Shuffle(row_list);
+    std::stable_sort(row_list.begin(), row_list.end(),
+                     [](const auto& a, const auto& b) { return a.size() > b.size(); });
+    std::map<int, int> pool;
+    for (int value : base_values) ++pool[value];
+    for (const auto& members : row_list) {
+      int best = -1, best_n = 0;
+      for (const auto& [value, n] : pool) {
+        if (n > best_n) {
+          best = value;
+          best_n = n;
+        }
+      }
+      for (std::size_t i = 0; i < members.size() && pool[best] > 0; ++i) {
+        slots_[members[i]].length = best;
+        --pool[best];
+      }
+    }
+    base_values.clear();
+    for (const auto& [value, n] : pool) base_values.insert(base_values.end(), n, value);
     rng_.Shuffle(base_values);
     std::size_t v = 0;
     for (int s : base_slots) {
       if (slots_[s].is_long) {
         long_share_.push_back({s, rng_.Uniform()});
-      } else {
+      } else if (slots_[s].length == 0.0) {
         slots_[s].length = base_values.at(v++);
       }
     }
@@ -677,6 +719,7 @@ class EngineeringBuilder {
   std::vector<double> wing_gap_;
   std::vector<double> wing_margin_;
   int next_pair_ = 0;
+  int next_row_ = 0;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -693,11 +736,16 @@ Map GenerateWellsHall(std::uint64_t seed, bool modified) {
   // door and an 84 in wall, 10 ft on centre), walked counter-clockwise (concave corners).
   // The corner walls differ from corner to corner (the building is not symmetric), and one
   // double door on a long side is the single reference landmark (§6.8).
-  const int long_modules = 10, short_modules = 6;
+  const int long_modules = 14, short_modules = 7;
   const double module_wall = 84.0;
   std::vector<Item> major;
+  // Corner walls from a short list of standard returns, so that corners only partly tell
+  // themselves apart (the regularity of §6.8).
+  const std::vector<double> returns = {24, 36, 48};
   std::array<std::pair<double, double>, 4> corner_walls;
-  for (auto& c : corner_walls) c = {static_cast<double>(rng.Int(3, 8) * 6), static_cast<double>(rng.Int(3, 8) * 6)};
+  for (auto& c : corner_walls) {
+    c = {returns[rng.Below(returns.size())], returns[rng.Below(returns.size())]};
+  }
   const int landmark_side = static_cast<int>(rng.Below(2)) * 2;  // a long side
   const int landmark_at = rng.Int(2, long_modules - 3);
   for (int side = 0; side < 4; ++side) {
@@ -739,32 +787,33 @@ Map GenerateWellsHall(std::uint64_t seed, bool modified) {
   }
   const double outer_w = side_length(0), outer_h = side_length(1);
 
-  // The core inside the loop: stairs, lifts, toilets and store rooms behind ordinary doors,
-  // irregularly spaced; walked clockwise (convex corners).
+  // The core inside the loop: inner offices on the same kind of module (a 36 in door and a
+  // 96 in wall) with a few odd doors among them (toilets behind a 30/30 double door, a store
+  // room, a plant room); walked clockwise (convex corners). The first and last wall of each
+  // side take up what the modules leave.
   const double hall = 96.0;
   const double core_w = outer_w - 2 * hall, core_h = outer_h - 2 * hall;
+  const double core_module_wall = 96.0;
   std::vector<Item> core;
   const std::array<double, 4> core_sides = {core_w, core_h, core_w, core_h};
-  const std::array<std::vector<DoorClass>, 4> core_doors = {
-      std::vector<DoorClass>{DoorClass::k36, DoorClass::k36, DoorClass::k32},
-      std::vector<DoorClass>{DoorClass::k40},
-      std::vector<DoorClass>{DoorClass::k36, DoorClass::k30_30, DoorClass::k36},
-      std::vector<DoorClass>{DoorClass::k32}};
+  const std::array<DoorClass, 4> odd_door = {DoorClass::k32, DoorClass::k40, DoorClass::k30_30,
+                                             DoorClass::k32};
   for (int side = 0; side < 4; ++side) {
-    const auto& doors = core_doors[side];
-    double door_total = 0;
-    for (DoorClass d : doors) door_total += DoorClassWidthIn(d);
-    // Walls between the doors: random shares of the rest, in whole inches.
-    std::vector<double> shares(doors.size() + 1);
-    double sum = 0;
-    for (double& s : shares) sum += (s = 0.5 + rng.Uniform());
-    const double wall_total = core_sides[side] - door_total;
+    const int modules =
+        static_cast<int>((core_sides[side] - 2 * 48.0) / (36.0 + core_module_wall));
+    const int odd_at = rng.Int(0, modules - 1);
+    std::vector<DoorClass> doors;
+    for (int m = 0; m < modules; ++m) doors.push_back(m == odd_at ? odd_door[side] : DoorClass::k36);
     double used = 0;
-    for (std::size_t k = 0; k <= doors.size(); ++k) {
-      double w = k == doors.size() ? wall_total - used : std::round(wall_total * shares[k] / sum);
-      used += w;
-      core.push_back({k == 0 ? 90.0 : 180.0, Edge::Wall(w), false});
-      if (k < doors.size()) core.push_back({180.0, Edge::Door(doors[k]), false});
+    for (DoorClass d : doors) used += DoorClassWidthIn(d);
+    used += core_module_wall * (modules - 1);
+    const double ends = core_sides[side] - used;
+    const double first = std::floor(ends * (0.3 + 0.4 * rng.Uniform()));
+    core.push_back({90.0, Edge::Wall(first), false});
+    for (int m = 0; m < modules; ++m) {
+      core.push_back({180.0, Edge::Door(doors[m]), false});
+      core.push_back(
+          {180.0, Edge::Wall(m + 1 == modules ? ends - first : core_module_wall), false});
     }
   }
   // The core is joined to the loop at an artificial node at its first corner.
@@ -871,10 +920,11 @@ Map GenerateStorefront(std::uint64_t seed) {
   const std::vector<Unit> designs = {
       {18, 60, 96, DoorClass::k36, DoorClass::k32},
       {18, 72, 60, DoorClass::k36_36, DoorClass::k32},
-      {24, 48, 120, DoorClass::k36, DoorClass::k30},
-      {12, 96, 84, DoorClass::k30_30, DoorClass::k36},
+      {24, 48, 120, DoorClass::k36, DoorClass::k32},
   };
   const double face = 1584.0;
+  // Runs of identical shops: the regularity that makes the street ambiguous.
+  constexpr int kMinRun = 4, kMaxRun = 8;
   std::vector<Item> items;
   for (int side = 0; side < 4; ++side) {
     // Units along this face until it is full; the last wall takes what is left.
@@ -882,7 +932,7 @@ Map GenerateStorefront(std::uint64_t seed) {
     double used = 0;
     double pending = 0;  // wall length carried to the next door
     int design = static_cast<int>(rng.Below(designs.size()));
-    int run = rng.Int(2, 4);
+    int run = rng.Int(kMinRun, kMaxRun);
     pending = 36.0 + 12.0 * rng.Below(4);  // corner pier
     while (true) {
       const Unit& u = designs[design];
@@ -898,7 +948,7 @@ Map GenerateStorefront(std::uint64_t seed) {
       pending = 0;
       if (--run == 0) {
         design = static_cast<int>(rng.Below(designs.size()));
-        run = rng.Int(2, 4);
+        run = rng.Int(kMinRun, kMaxRun);
       }
     }
     face_items.push_back({180.0, Edge::Wall(face - used), false});
@@ -909,7 +959,7 @@ Map GenerateStorefront(std::uint64_t seed) {
   info.name = "storefront";
   info.description =
       "Synthetic storefront (Section 6.8): 1/10 mile of street frontage round a city block, "
-      "shops built from four standard unit designs in runs.";
+      "shops built from three standard unit designs in runs.";
   Ring ring = BuildRing("block_frontage", true, items, 0.0, face, 0.0);
   return Map(info, {ring});
 }
