@@ -1,7 +1,6 @@
 // stickrep-sensing: reproduces the sensing tables of Chapter 5 (Tables 5.2-5.6, Figures
 // 5.4-5.9) beside the paper's figures.
 #include <CLI/CLI.hpp>
-
 #include <fstream>
 #include <iostream>
 
@@ -13,24 +12,34 @@ int main(int argc, char** argv) {
   using namespace stickrep::sensing;
   CLI::App app{"StickRep sensing geometry: error analysis and Monte Carlo (Chapter 5)"};
   app.require_subcommand(1);
-  CLI::App* report = app.add_subcommand("report", "print Tables 5.2-5.6 and 4.1, ours beside the paper's");
+  CLI::App* report =
+      app.add_subcommand("report", "print Tables 5.2-5.6 and 4.1, ours beside the paper's");
   ReportOptions opt;
   std::string robot_path = DefaultRobotConfigPath();
   std::string json_path, png_dir;
   bool fov_edges = false;
   report->add_option("--robot", robot_path, "robot geometry YAML")->capture_default_str();
-  report->add_option("--seed", opt.seed, "seed of the Monte Carlo generator")->capture_default_str();
+  report->add_option("--seed", opt.seed, "seed of the Monte Carlo generator")
+      ->capture_default_str();
   report->add_option("--trials", opt.trials, "trials per stare and geometry")
-      ->check(CLI::Range(1, 100000000))->capture_default_str();
+      ->check(CLI::Range(1, 100000000))
+      ->capture_default_str();
   report->add_option("--wall-distance-in", opt.wall_distance_in, "perpendicular range to the wall")
-      ->check(CLI::Range(12.0, 420.0))->capture_default_str();
+      ->check(CLI::Range(12.0, 420.0))
+      ->capture_default_str();
   report->add_option("--door-width-in", opt.door_width_in, "true door width")
-      ->check(CLI::Range(12.0, 96.0))->capture_default_str();
-  report->add_option("--door-offset-in", opt.door_offset_in, "door centre along the wall from the optical axis")
-      ->check(CLI::Range(-60.0, 60.0))->capture_default_str();
-  report->add_flag("--fov-edges", fov_edges, "Short Side sides along the FOV edges instead of the 30 deg rays");
+      ->check(CLI::Range(12.0, 96.0))
+      ->capture_default_str();
+  report
+      ->add_option("--door-offset-in", opt.door_offset_in,
+                   "door centre along the wall from the optical axis")
+      ->check(CLI::Range(-60.0, 60.0))
+      ->capture_default_str();
+  report->add_flag("--fov-edges", fov_edges,
+                   "Short Side sides along the FOV edges instead of the 30 deg rays");
   report->add_option("--json", json_path, "also write the report as JSON");
-  report->add_option("--png", png_dir, "write the histograms (Figures 5.4-5.9) into this directory");
+  report->add_option("--png", png_dir,
+                     "write the histograms (Figures 5.4-5.9) into this directory");
   CLI11_PARSE(app, argc, argv);
 
   try {

@@ -10,24 +10,36 @@ namespace stickrep::sensing {
 
 const char* ToString(DoorClass c) {
   switch (c) {
-    case DoorClass::kDoor30: return "30";
-    case DoorClass::kDoor32: return "32";
-    case DoorClass::kDoor36: return "36";
-    case DoorClass::kDoor40: return "40";
-    case DoorClass::kDouble30: return "30/30";
-    case DoorClass::kDouble36: return "36/36";
+    case DoorClass::kDoor30:
+      return "30";
+    case DoorClass::kDoor32:
+      return "32";
+    case DoorClass::kDoor36:
+      return "36";
+    case DoorClass::kDoor40:
+      return "40";
+    case DoorClass::kDouble30:
+      return "30/30";
+    case DoorClass::kDouble36:
+      return "36/36";
   }
   return "?";
 }
 
 double NominalWidthIn(DoorClass c) {
   switch (c) {
-    case DoorClass::kDoor30: return 30;
-    case DoorClass::kDoor32: return 32;
-    case DoorClass::kDoor36: return 36;
-    case DoorClass::kDoor40: return 40;
-    case DoorClass::kDouble30: return 60;
-    case DoorClass::kDouble36: return 72;
+    case DoorClass::kDoor30:
+      return 30;
+    case DoorClass::kDoor32:
+      return 32;
+    case DoorClass::kDoor36:
+      return 36;
+    case DoorClass::kDoor40:
+      return 40;
+    case DoorClass::kDouble30:
+      return 60;
+    case DoorClass::kDouble36:
+      return 72;
   }
   return 0;
 }
@@ -53,8 +65,7 @@ std::vector<ClassBoundary> DefaultBoundaries() {
   return out;
 }
 
-std::optional<DoorClass> ClassifyWidth(const std::vector<ClassBoundary>& regions,
-                                       double width_in) {
+std::optional<DoorClass> ClassifyWidth(const std::vector<ClassBoundary>& regions, double width_in) {
   if (!std::isfinite(width_in)) return std::nullopt;
   for (const ClassBoundary& b : regions) {
     if (width_in >= b.low_in && width_in < b.high_in) return b.door_class;
@@ -133,8 +144,8 @@ std::vector<ClassBoundary> DeriveBayesBoundaries(const BayesModel& m) {
     const int d = decide(w);
     if (d == current) continue;
     const int before = current;
-    const double edge = Bisect([&](double x) { return decide(x) == before ? 1.0 : -1.0; },
-                               w - step, w);
+    const double edge =
+        Bisect([&](double x) { return decide(x) == before ? 1.0 : -1.0; }, w - step, w);
     if (before >= 0) out.push_back({classes[before].c, start, edge});
     current = d;
     start = edge;
@@ -170,9 +181,17 @@ double FitSigmaToTable41(BayesModel model) {
   double f1 = cost(x1), f2 = cost(x2);
   for (int i = 0; i < 60; ++i) {
     if (f1 < f2) {
-      b = x2; x2 = x1; f2 = f1; x1 = b - g * (b - a); f1 = cost(x1);
+      b = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = b - g * (b - a);
+      f1 = cost(x1);
     } else {
-      a = x1; x1 = x2; f1 = f2; x2 = a + g * (b - a); f2 = cost(x2);
+      a = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = a + g * (b - a);
+      f2 = cost(x2);
     }
   }
   return 0.5 * (a + b);

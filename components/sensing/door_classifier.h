@@ -8,8 +8,8 @@ namespace stickrep::sensing {
 
 // The legal door widths of the domain (§4.1.2, §6.1; SPEC §1).
 enum class DoorClass { kDoor30, kDoor32, kDoor36, kDoor40, kDouble30, kDouble36 };
-const char* ToString(DoorClass c);     // "30", "32", "36", "40", "30/30", "36/36"
-double NominalWidthIn(DoorClass c);    // 30, 32, 36, 40, 60, 72
+const char* ToString(DoorClass c);   // "30", "32", "36", "40", "30/30", "36/36"
+double NominalWidthIn(DoorClass c);  // 30, 32, 36, 40, 60, 72
 
 // One decision region of the Bayes rule: widths in [low_in, high_in) are this class.
 struct ClassBoundary {
@@ -28,8 +28,7 @@ std::vector<ClassBoundary> DefaultBoundaries();
 
 // Classifies a measured ribbon width against `regions`; nullopt outside every region (the
 // candidate is rejected, §4.1.2). NaN is rejected too.
-std::optional<DoorClass> ClassifyWidth(const std::vector<ClassBoundary>& regions,
-                                       double width_in);
+std::optional<DoorClass> ClassifyWidth(const std::vector<ClassBoundary>& regions, double width_in);
 
 // The measurement-error model behind a Bayes derivation of the boundaries.
 //
@@ -48,7 +47,7 @@ struct BayesModel {
   double prior_door32 = 4;
   double prior_door36 = 412;
   double prior_door40 = 22;
-  double prior_double30 = 4;   // not in Table 6.8: the smallest census count (door32)
+  double prior_double30 = 4;  // not in Table 6.8: the smallest census count (door32)
   double prior_double36 = 4;
   double clutter_fraction = 0.1591;  // Table 6.10 false positives
   double clutter_low_in = 12.0;

@@ -1,10 +1,9 @@
 #include "sensing/error_analysis.h"
 
 #include <Eigen/Core>
-#include <unsupported/Eigen/AutoDiff>
-
 #include <algorithm>
 #include <cmath>
+#include <unsupported/Eigen/AutoDiff>
 
 namespace stickrep::sensing {
 
@@ -44,9 +43,7 @@ double Uniform(std::mt19937_64& rng, double half_width) {
 
 }  // namespace
 
-const char* ToString(Geometry g) {
-  return g == Geometry::kTwoSide ? "Two Side" : "Short Side";
-}
+const char* ToString(Geometry g) { return g == Geometry::kTwoSide ? "Two Side" : "Short Side"; }
 
 Result<CompositeRangeError> Table52(double stare_rad) {
   double s = RadToDeg(stare_rad);
@@ -59,8 +56,8 @@ Result<CompositeRangeError> Table52(double stare_rad) {
   }
   s = std::clamp(s, 50.0, 90.0);
   const int i = s < 70.0 ? 0 : 1;
-  CompositeRangeError e = Lerp(kTable52[i].e, kTable52[i + 1].e,
-                               (s - kTable52[i].stare_deg) / 20.0);
+  CompositeRangeError e =
+      Lerp(kTable52[i].e, kTable52[i + 1].e, (s - kTable52[i].stare_deg) / 20.0);
   if (mirrored) {
     std::swap(e.approx_l_pct, e.approx_r_pct);
     std::swap(e.returned_l_pct, e.returned_r_pct);
@@ -94,14 +91,14 @@ Result<double> ShortRangeErrorPct(const ErrorBounds& b, double incidence_rad) {
 
 std::array<double, 4> TwoSideGradient(const CameraModel& cam, double rl_in, double rr_in,
                                       const Footprints& fp) {
-  return Gradient(TwoSideWidthT<Ad>(cam, Seed(rl_in, 0), Seed(rr_in, 1), Seed(fp.lj_px, 2),
-                                    Seed(fp.rj_px, 3)));
+  return Gradient(
+      TwoSideWidthT<Ad>(cam, Seed(rl_in, 0), Seed(rr_in, 1), Seed(fp.lj_px, 2), Seed(fp.rj_px, 3)));
 }
 
 std::array<double, 4> ShortSideGradient(const CameraModel& cam, double sdis_in, double theta_rad,
                                         const Footprints& fp, ShortSideEdges edges) {
-  return Gradient(ShortSideWidthT<Ad>(cam, Seed(sdis_in, 0), Seed(theta_rad, 1),
-                                      Seed(fp.lj_px, 2), Seed(fp.rj_px, 3), edges));
+  return Gradient(ShortSideWidthT<Ad>(cam, Seed(sdis_in, 0), Seed(theta_rad, 1), Seed(fp.lj_px, 2),
+                                      Seed(fp.rj_px, 3), edges));
 }
 
 Result<LinearEstimate> LinearFirstOrder(const CameraModel& cam, const StareScene& scene,
@@ -122,10 +119,12 @@ Result<LinearEstimate> LinearFirstOrder(const CameraModel& cam, const StareScene
     if (!table) return R::Fail(table.error(), table.message());
     // The Two Side sides are the returned ranges of the sensors 30° off the axis: their
     // error against the field-of-view edge is the approximation plus the returned error.
-    const double d_rl = std::abs(t.sensor_l_in - t.rl_in) + table->returned_l_pct / 100.0 * t.sensor_l_in;
-    const double d_rr = std::abs(t.sensor_r_in - t.rr_in) + table->returned_r_pct / 100.0 * t.sensor_r_in;
-    est.width_in = TwoSideWidthT<double>(cam, t.rl_in, t.rr_in, t.footprints.lj_px,
-                                         t.footprints.rj_px);
+    const double d_rl =
+        std::abs(t.sensor_l_in - t.rl_in) + table->returned_l_pct / 100.0 * t.sensor_l_in;
+    const double d_rr =
+        std::abs(t.sensor_r_in - t.rr_in) + table->returned_r_pct / 100.0 * t.sensor_r_in;
+    est.width_in =
+        TwoSideWidthT<double>(cam, t.rl_in, t.rr_in, t.footprints.lj_px, t.footprints.rj_px);
     grad = TwoSideGradient(cam, t.rl_in, t.rr_in, t.footprints);
     delta = {d_rl, d_rr, bounds.delta_footprint_px, bounds.delta_footprint_px};
     names = {"RL", "RR", "LJ", "RJ"};

@@ -59,10 +59,10 @@ struct LinearTerm {
 struct LinearEstimate {
   Geometry geometry = Geometry::kShortSide;
   double stare_rad = 0.0;
-  double width_in = 0.0;                // the geometry's width from error-free inputs
+  double width_in = 0.0;  // the geometry's width from error-free inputs
   std::array<LinearTerm, 4> terms;
-  double worst_case_in = 0.0;           // sum of |partial * delta|: every sign at its worst
-  double dot_product_in = 0.0;          // |gradient . delta| with every delta positive
+  double worst_case_in = 0.0;   // sum of |partial * delta|: every sign at its worst
+  double dot_product_in = 0.0;  // |gradient . delta| with every delta positive
 };
 
 // Gradients by forward-mode automatic differentiation (Eigen AutoDiffScalar).

@@ -42,8 +42,11 @@ bool FitWall(const SonarRingModel& ring, const std::vector<double>& bearings,
     double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
     for (std::size_t i = 0; i < r0.size(); ++i) {
       const double jd = (rd[i] - r0[i]) / hd, jn = (rn[i] - r0[i]) / hn;
-      a11 += jd * jd; a12 += jd * jn; a22 += jn * jn;
-      b1 += jd * r0[i]; b2 += jn * r0[i];
+      a11 += jd * jd;
+      a12 += jd * jn;
+      a22 += jn * jn;
+      b1 += jd * r0[i];
+      b2 += jn * r0[i];
     }
     const double det = a11 * a22 - a12 * a12;
     if (std::abs(det) < 1e-12) return false;
@@ -119,7 +122,8 @@ Result<bool> LandmarkEstimator::FillOpenDoor(const Footprints& fp, std::vector<d
     if (!(*valid)[k]) continue;
     const double r = (*ranges)[k];
     const bool off_l = left < 0 || std::abs(r - (*ranges)[left]) > config_.open_door_depth_edge_in;
-    const bool off_r = right < 0 || std::abs(r - (*ranges)[right]) > config_.open_door_depth_edge_in;
+    const bool off_r =
+        right < 0 || std::abs(r - (*ranges)[right]) > config_.open_door_depth_edge_in;
     if (off_l && off_r && (left >= 0 || right >= 0)) edge = true;
   }
   if (!edge) return Result<bool>::Ok(false);
@@ -158,17 +162,17 @@ Result<LandmarkObservation> LandmarkEstimator::Estimate(
   using R = Result<LandmarkObservation>;
   const std::size_t n = static_cast<std::size_t>(ring_.count);
   if (scan.ranges_in.size() != n || scan.valid.size() != n) {
-    return R::Fail(SensingError::kBadSonarRange,
-                   "a scan needs " + std::to_string(n) + " ranges and validity flags, got " +
-                       std::to_string(scan.ranges_in.size()) + " and " +
-                       std::to_string(scan.valid.size()));
+    return R::Fail(SensingError::kBadSonarRange, "a scan needs " + std::to_string(n) +
+                                                     " ranges and validity flags, got " +
+                                                     std::to_string(scan.ranges_in.size()) +
+                                                     " and " + std::to_string(scan.valid.size()));
   }
   for (std::size_t k = 0; k < n; ++k) {
     if (scan.valid[k] && !ring_.InRange(scan.ranges_in[k])) {
       return R::Fail(SensingError::kBadSonarRange,
                      "sensor " + std::to_string(k) + " is flagged valid but reads " +
-                         Num(scan.ranges_in[k]) + " in (valid: " + Num(ring_.min_range_in) +
-                         ".." + Num(ring_.max_range_in) + " in)");
+                         Num(scan.ranges_in[k]) + " in (valid: " + Num(ring_.min_range_in) + ".." +
+                         Num(ring_.max_range_in) + " in)");
     }
   }
   for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -240,8 +244,9 @@ Result<LandmarkObservation> LandmarkEstimator::Estimate(
     obs.theta_rad = rs->theta_rad;
     obs.look_angle_rad = StareFromTheta(rs->theta_rad);
     obs.open_door = *open;
-    obs.in_envelope = std::abs(rs->theta_rad) <= config_.envelope_axis_angle_rad &&
-                      (!lateral_offset_in || std::abs(*lateral_offset_in) <= config_.envelope_lateral_in);
+    obs.in_envelope =
+        std::abs(rs->theta_rad) <= config_.envelope_axis_angle_rad &&
+        (!lateral_offset_in || std::abs(*lateral_offset_in) <= config_.envelope_lateral_in);
     return R::Ok(obs);
   }
   if (!tried.empty()) {

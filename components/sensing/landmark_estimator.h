@@ -29,7 +29,7 @@ struct JambCandidate {
 struct LandmarkEstimatorConfig {
   Geometry geometry = Geometry::kShortSide;  // §5.5: the Short Side is the better one
   ShortSideEdges short_side_edges = ShortSideEdges::kPaperSensorRays;
-  double min_confidence = 0.0;               // §4.1.2 "a preset confidence threshold"
+  double min_confidence = 0.0;  // §4.1.2 "a preset confidence threshold"
   std::vector<ClassBoundary> classes = DefaultBoundaries();  // Table 4.1 + door30
   // A sensor inside the door's bearing span that differs from both flanks by more than
   // this is a depth edge (an open door, §4.1.2). A door leaf is under 2 in thick and a
@@ -52,7 +52,7 @@ struct LandmarkObservation {
   double theta_rad = 0.0;       // optical axis to wall normal, as the sonar saw it
   double look_angle_rad = 0.0;  // stare delta = theta + 90°
   bool in_envelope = false;
-  bool open_door = false;       // flank line fit used (§4.1.2)
+  bool open_door = false;  // flank line fit used (§4.1.2)
 };
 
 // The landmark classification stage (§4.1.2 with the geometries of §5.2/§5.3): fuses one
@@ -67,9 +67,9 @@ class LandmarkEstimator {
   // Errors: kBadSonarRange (wrong count, or a valid-flagged NaN/negative/out-of-range
   // range), kBadFootprint (any malformed candidate), kNoValidSonar, kNoCandidate,
   // kStareOutOfRange, kOpenDoorUnresolved, kOutsideEveryClass.
-  Result<LandmarkObservation> Estimate(const SonarScan& scan,
-                                       const std::vector<JambCandidate>& candidates,
-                                       std::optional<double> lateral_offset_in = std::nullopt) const;
+  Result<LandmarkObservation> Estimate(
+      const SonarScan& scan, const std::vector<JambCandidate>& candidates,
+      std::optional<double> lateral_offset_in = std::nullopt) const;
 
   const CameraModel& camera() const { return camera_; }
   const SonarRingModel& ring() const { return ring_; }

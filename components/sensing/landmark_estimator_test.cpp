@@ -115,8 +115,8 @@ TEST_F(LandmarkEstimatorTest, OpenDoorDepthIsInterpolatedFromTheFlanks) {
 
 TEST_F(LandmarkEstimatorTest, ObliqueStareIsOutsideTheEnvelope) {
   // Wall normal 30° to the left of the axis: the sensor two spacings left is nearest.
-  const auto obs = est_.Estimate(WallScan(est_, 72.0, DegToRad(-30.0)),
-                                 {Door(est_, 36.0, 60.0, 1.0)});
+  const auto obs =
+      est_.Estimate(WallScan(est_, 72.0, DegToRad(-30.0)), {Door(est_, 36.0, 60.0, 1.0)});
   ASSERT_TRUE(obs.ok()) << obs.message();
   EXPECT_THAT(obs->theta_rad, DoubleNear(DegToRad(-30.0), 1e-12));
   EXPECT_FALSE(obs->in_envelope);

@@ -10,15 +10,15 @@ namespace stickrep::sensing {
 // Why a sensing computation produced no value. Bad inputs are reported, never turned into
 // a NaN width (SPEC §7).
 enum class SensingError {
-  kBadSonarRange,        // NaN, infinite, negative or outside the ring's 1-35 ft
-  kBadFootprint,         // NaN, outside the image, or LJ >= RJ
-  kStareOutOfRange,      // theta outside the geometry's valid interval (§5.3)
-  kBadParameter,         // a non-physical parameter (door width <= 0, FOV, ...)
-  kDegenerateGeometry,   // the triangles of §5.2 collapse (ray parallel to the wall)
-  kNoValidSonar,         // the sensors a geometry needs are all invalid
-  kOutsideEveryClass,    // no candidate width falls inside a door class (§4.1.2)
-  kNoCandidate,          // no candidate footprint pair above the confidence threshold
-  kOpenDoorUnresolved,   // depth edge inside the door but too few flank readings (§4.1.2)
+  kBadSonarRange,       // NaN, infinite, negative or outside the ring's 1-35 ft
+  kBadFootprint,        // NaN, outside the image, or LJ >= RJ
+  kStareOutOfRange,     // theta outside the geometry's valid interval (§5.3)
+  kBadParameter,        // a non-physical parameter (door width <= 0, FOV, ...)
+  kDegenerateGeometry,  // the triangles of §5.2 collapse (ray parallel to the wall)
+  kNoValidSonar,        // the sensors a geometry needs are all invalid
+  kOutsideEveryClass,   // no candidate width falls inside a door class (§4.1.2)
+  kNoCandidate,         // no candidate footprint pair above the confidence threshold
+  kOpenDoorUnresolved,  // depth edge inside the door but too few flank readings (§4.1.2)
 };
 
 const char* ToString(SensingError e);
@@ -46,8 +46,7 @@ class Result {
 
  private:
   explicit Result(T value) : value_(std::move(value)) {}
-  Result(SensingError error, std::string message)
-      : error_(error), message_(std::move(message)) {}
+  Result(SensingError error, std::string message) : error_(error), message_(std::move(message)) {}
 
   std::optional<T> value_;
   SensingError error_ = SensingError::kBadParameter;

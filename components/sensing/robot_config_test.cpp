@@ -62,7 +62,8 @@ TEST(RobotConfigTest, ReadsEveryValue) {
 }
 
 TEST(RobotConfigTest, UnknownKeyNamesLineAndKey) {
-  const InputError e = LoadError(Replace(kGood, "    cone_deg: 23.6\n", "    cone_deg: 23.6\n    cone: 3\n"));
+  const InputError e =
+      LoadError(Replace(kGood, "    cone_deg: 23.6\n", "    cone_deg: 23.6\n    cone: 3\n"));
   EXPECT_EQ(e.line(), 7);
   EXPECT_THAT(e.key(), HasSubstr("robot.sonar_ring.cone"));
   EXPECT_THAT(e.reason(), HasSubstr("unknown key"));
@@ -82,7 +83,8 @@ TEST(RobotConfigTest, OutOfRangeValueNamesUnitAndLine) {
 }
 
 TEST(RobotConfigTest, PitchInconsistentWithFieldOfViewIsRejected) {
-  const InputError e = LoadError(Replace(kGood, "pixel_pitch_mm: 0.012414", "pixel_pitch_mm: 0.02"));
+  const InputError e =
+      LoadError(Replace(kGood, "pixel_pitch_mm: 0.012414", "pixel_pitch_mm: 0.02"));
   EXPECT_THAT(e.key(), HasSubstr("pixel_pitch_mm"));
   EXPECT_THAT(e.reason(), HasSubstr("field of view"));
 }

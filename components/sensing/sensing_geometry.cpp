@@ -16,9 +16,9 @@ std::string Num(double v) {
 
 Result<double> CheckRange(const char* name, double range_in) {
   if (!std::isfinite(range_in) || range_in <= 0.0) {
-    return Result<double>::Fail(SensingError::kBadSonarRange,
-                                std::string(name) + " must be a finite range > 0 in, got " +
-                                    Num(range_in));
+    return Result<double>::Fail(
+        SensingError::kBadSonarRange,
+        std::string(name) + " must be a finite range > 0 in, got " + Num(range_in));
   }
   return Result<double>::Ok(range_in);
 }
@@ -26,8 +26,8 @@ Result<double> CheckRange(const char* name, double range_in) {
 Result<double> CheckWidth(double width_in) {
   if (!std::isfinite(width_in) || width_in <= 0.0) {
     return Result<double>::Fail(SensingError::kDegenerateGeometry,
-                                "the geometry gives no positive finite width (" +
-                                    Num(width_in) + " in): a ray misses the wall");
+                                "the geometry gives no positive finite width (" + Num(width_in) +
+                                    " in): a ray misses the wall");
   }
   return Result<double>::Ok(width_in);
 }
@@ -36,15 +36,24 @@ Result<double> CheckWidth(double width_in) {
 
 const char* ToString(SensingError e) {
   switch (e) {
-    case SensingError::kBadSonarRange: return "bad sonar range";
-    case SensingError::kBadFootprint: return "bad footprint";
-    case SensingError::kStareOutOfRange: return "stare out of range";
-    case SensingError::kBadParameter: return "bad parameter";
-    case SensingError::kDegenerateGeometry: return "degenerate geometry";
-    case SensingError::kNoValidSonar: return "no valid sonar";
-    case SensingError::kOutsideEveryClass: return "outside every class";
-    case SensingError::kNoCandidate: return "no candidate";
-    case SensingError::kOpenDoorUnresolved: return "open door unresolved";
+    case SensingError::kBadSonarRange:
+      return "bad sonar range";
+    case SensingError::kBadFootprint:
+      return "bad footprint";
+    case SensingError::kStareOutOfRange:
+      return "stare out of range";
+    case SensingError::kBadParameter:
+      return "bad parameter";
+    case SensingError::kDegenerateGeometry:
+      return "degenerate geometry";
+    case SensingError::kNoValidSonar:
+      return "no valid sonar";
+    case SensingError::kOutsideEveryClass:
+      return "outside every class";
+    case SensingError::kNoCandidate:
+      return "no candidate";
+    case SensingError::kOpenDoorUnresolved:
+      return "open door unresolved";
   }
   return "unknown";
 }
@@ -60,8 +69,8 @@ CameraModel CameraModel::FromConfig(const CameraConfig& c) {
 Result<Footprints> CheckFootprints(const CameraModel& cam, const Footprints& fp) {
   if (!std::isfinite(fp.lj_px) || !std::isfinite(fp.rj_px)) {
     return Result<Footprints>::Fail(SensingError::kBadFootprint,
-                                    "footprints must be finite columns, got LJ=" +
-                                        Num(fp.lj_px) + " px, RJ=" + Num(fp.rj_px) + " px");
+                                    "footprints must be finite columns, got LJ=" + Num(fp.lj_px) +
+                                        " px, RJ=" + Num(fp.rj_px) + " px");
   }
   if (fp.lj_px < 0.0 || fp.rj_px > cam.width_px) {
     return Result<Footprints>::Fail(

@@ -73,11 +73,11 @@ T Atan(const T& x) {
 // the left edge meets the wall at an obtuse angle (theta > FOV/2 - 0).
 template <typename T>
 T TwoSideWidthT(const CameraModel& cam, const T& rl, const T& rr, const T& lj, const T& rj) {
+  using geometry_detail::Atan;
+  using std::atan2;
   using std::cos;
   using std::sin;
   using std::sqrt;
-  using std::atan2;
-  using geometry_detail::Atan;
   const double fov = cam.fov_rad;
   const double k = cam.pitch_over_focal;
   const double mid = cam.mid_px();
@@ -102,8 +102,8 @@ void ShortSideSidesT(const CameraModel& cam, const T& sdis, const T& theta, Shor
 
 // Short Side Geometry (§5.3), unchecked.
 template <typename T>
-T ShortSideWidthT(const CameraModel& cam, const T& sdis, const T& theta, const T& lj,
-                  const T& rj, ShortSideEdges edges = ShortSideEdges::kPaperSensorRays) {
+T ShortSideWidthT(const CameraModel& cam, const T& sdis, const T& theta, const T& lj, const T& rj,
+                  ShortSideEdges edges = ShortSideEdges::kPaperSensorRays) {
   T rl, rr;
   ShortSideSidesT(cam, sdis, theta, edges, &rl, &rr);
   return TwoSideWidthT(cam, rl, rr, lj, rj);
@@ -135,12 +135,12 @@ struct StareScene {
 // What a perfect sensor would report for a StareScene.
 struct SceneTruth {
   double theta_rad = 0.0;
-  double sdis_in = 0.0;         // perpendicular range to the wall
-  double rl_in = 0.0;           // range along the left field-of-view edge
-  double rr_in = 0.0;           // range along the right field-of-view edge
-  double sensor_l_in = 0.0;     // range along the ray 30° left of the axis (ideal ray L)
-  double sensor_r_in = 0.0;     // range along the ray 30° right of the axis (ideal ray R)
-  Footprints footprints;        // jamb columns
+  double sdis_in = 0.0;      // perpendicular range to the wall
+  double rl_in = 0.0;        // range along the left field-of-view edge
+  double rr_in = 0.0;        // range along the right field-of-view edge
+  double sensor_l_in = 0.0;  // range along the ray 30° left of the axis (ideal ray L)
+  double sensor_r_in = 0.0;  // range along the ray 30° right of the axis (ideal ray R)
+  Footprints footprints;     // jamb columns
 };
 
 // Fails when the door is not wholly inside the field of view or the stare is invalid.

@@ -53,8 +53,8 @@ TEST(TwoSideGeometryTest, RecoversTheWidthAtObliqueStaresOnBothSides) {
 TEST(ShortSideGeometryTest, FieldOfViewEdgesVariantIsExact) {
   const auto t = MakeScene(Cam(), {72.0, DegToRad(70.0), 36.0, 0.0});
   ASSERT_TRUE(t.ok());
-  const auto w = ShortSideWidth(Cam(), 72.0, t->theta_rad, t->footprints,
-                                ShortSideEdges::kFieldOfViewEdges);
+  const auto w =
+      ShortSideWidth(Cam(), 72.0, t->theta_rad, t->footprints, ShortSideEdges::kFieldOfViewEdges);
   ASSERT_TRUE(w.ok());
   EXPECT_THAT(*w, DoubleNear(36.0, 1e-9));
 }

@@ -76,28 +76,28 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
       "seed {}  trials {}  wall {:.1f} in  door {:.1f} in (offset {:.1f} in)  short side {}\n",
       opt.seed, opt.trials, opt.wall_distance_in, opt.door_width_in, opt.door_offset_in,
       opt.edges == ShortSideEdges::kPaperSensorRays ? "as printed (30 deg sensor rays)"
-                                                     : "field-of-view edges");
+                                                    : "field-of-view edges");
   out += fmt::format(
       "camera: FOV {:.3f} deg, {} px wide, f {:.2f} mm, pitch {:.6f} mm; bounds: dtheta {:.2f} "
       "deg, dLJ=dRJ {:.1f} px, surface {}\n\n",
       robot.camera.fov_deg, robot.camera.image_width_px, robot.camera.focal_length_mm,
       robot.camera.pixel_pitch_mm, RadToDeg(opt.bounds.delta_theta_rad),
       opt.bounds.delta_footprint_px, ToString(opt.bounds.surface));
-  js["parameters"] = {{"seed", opt.seed},
-                      {"trials", opt.trials},
-                      {"wall_distance_in", opt.wall_distance_in},
-                      {"door_width_in", opt.door_width_in},
-                      {"door_offset_in", opt.door_offset_in},
-                      {"short_side_edges", opt.edges == ShortSideEdges::kPaperSensorRays
-                                               ? "paper_sensor_rays"
-                                               : "field_of_view_edges"},
-                      {"fov_deg", robot.camera.fov_deg},
-                      {"image_width_px", robot.camera.image_width_px},
-                      {"focal_length_mm", robot.camera.focal_length_mm},
-                      {"pixel_pitch_mm", robot.camera.pixel_pitch_mm},
-                      {"delta_theta_deg", RadToDeg(opt.bounds.delta_theta_rad)},
-                      {"delta_footprint_px", opt.bounds.delta_footprint_px},
-                      {"surface", ToString(opt.bounds.surface)}};
+  js["parameters"] = {
+      {"seed", opt.seed},
+      {"trials", opt.trials},
+      {"wall_distance_in", opt.wall_distance_in},
+      {"door_width_in", opt.door_width_in},
+      {"door_offset_in", opt.door_offset_in},
+      {"short_side_edges",
+       opt.edges == ShortSideEdges::kPaperSensorRays ? "paper_sensor_rays" : "field_of_view_edges"},
+      {"fov_deg", robot.camera.fov_deg},
+      {"image_width_px", robot.camera.image_width_px},
+      {"focal_length_mm", robot.camera.focal_length_mm},
+      {"pixel_pitch_mm", robot.camera.pixel_pitch_mm},
+      {"delta_theta_deg", RadToDeg(opt.bounds.delta_theta_rad)},
+      {"delta_footprint_px", opt.bounds.delta_footprint_px},
+      {"surface", ToString(opt.bounds.surface)}};
 
   // Table 5.2: the approximation columns are geometry, computed; the returned-range columns
   // are the paper's empirical summary, used as given.
@@ -120,8 +120,9 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
 
   // Table 5.3.
   out += "\nTable 5.3  Worst-case width error, linear first-order model (in)\n";
-  out += "  geometry     stare  paper   ours: sum|d*D|  (diff)   |grad.D|  (diff)   terms "
-         "d*D (in)\n";
+  out +=
+      "  geometry     stare  paper   ours: sum|d*D|  (diff)   |grad.D|  (diff)   terms "
+      "d*D (in)\n";
   for (Geometry g : {Geometry::kTwoSide, Geometry::kShortSide}) {
     for (int i = 0; i < 3; ++i) {
       const double s = kStaresDeg[i];
@@ -153,12 +154,11 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
   half.delta_theta_rad = opt.bounds.delta_theta_rad / 2.0;
   for (int i = 0; i < 3; ++i) {
     const double s = kStaresDeg[i];
-    const LinearEstimate e =
-        Must(LinearFirstOrder(cam, scene_at(s), Geometry::kShortSide, half, opt.edges),
-             "Table 5.4");
+    const LinearEstimate e = Must(
+        LinearFirstOrder(cam, scene_at(s), Geometry::kShortSide, half, opt.edges), "Table 5.4");
     out += fmt::format("  {:3.0f}   {:5.2f}   {:13.2f}   {}   {:7.2f}  {}\n", s, kPaperTable54[i],
-                       e.worst_case_in, Ratio(e.worst_case_in, kPaperTable54[i]),
-                       e.dot_product_in, Ratio(e.dot_product_in, kPaperTable54[i]));
+                       e.worst_case_in, Ratio(e.worst_case_in, kPaperTable54[i]), e.dot_product_in,
+                       Ratio(e.dot_product_in, kPaperTable54[i]));
     js["table_5_4"].push_back({{"stare_deg", s},
                                {"paper_in", kPaperTable54[i]},
                                {"ours_worst_case_in", e.worst_case_in},
@@ -171,8 +171,8 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
   out += "  stare  paper   ours   (search capped at 45 deg, where Tables 4.2/4.3 turn gross)\n";
   for (int i = 0; i < 3; ++i) {
     const double s = kStaresDeg[i];
-    const double tol = RadToDeg(
-        Must(ShortSideThetaTolerance(cam, scene_at(s), opt.bounds, 2.0), "Table 5.5"));
+    const double tol =
+        RadToDeg(Must(ShortSideThetaTolerance(cam, scene_at(s), opt.bounds, 2.0), "Table 5.5"));
     out += fmt::format("  {:3.0f}   {:5.1f}   {:5.2f}\n", s, kPaperTable55Deg[i], tol);
     js["table_5_5"].push_back(
         {{"stare_deg", s}, {"paper_deg", kPaperTable55Deg[i]}, {"ours_deg", tol}});
@@ -191,14 +191,13 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
   for (Geometry g : {Geometry::kShortSide, Geometry::kTwoSide}) {
     for (int i = 0; i < 3; ++i) {
       const double s = kStaresDeg[i];
-      const MonteCarloResult r =
-          Must(RunMonteCarlo(cam, scene_at(s), g, mc, rng), "Table 5.6");
+      const MonteCarloResult r = Must(RunMonteCarlo(cam, scene_at(s), g, mc, rng), "Table 5.6");
       const bool has_paper = g == Geometry::kShortSide;
-      out += fmt::format("  {:<10}   {:3.0f}   {}   {:5.3f}   {}   {:+8.2f}  {:7.2f}  {:8d}\n",
-                         ToString(g), s, has_paper ? fmt::format("{:5.2f}", kPaperTable56[i]) : "    -",
-                         r.p_within_tolerance,
-                         has_paper ? Ratio(r.p_within_tolerance, kPaperTable56[i]) : "    -",
-                         r.mean_error_in, r.stddev_in, r.rejected);
+      out += fmt::format(
+          "  {:<10}   {:3.0f}   {}   {:5.3f}   {}   {:+8.2f}  {:7.2f}  {:8d}\n", ToString(g), s,
+          has_paper ? fmt::format("{:5.2f}", kPaperTable56[i]) : "    -", r.p_within_tolerance,
+          has_paper ? Ratio(r.p_within_tolerance, kPaperTable56[i]) : "    -", r.mean_error_in,
+          r.stddev_in, r.rejected);
       nlohmann::json row = {{"geometry", ToString(g)},
                             {"stare_deg", s},
                             {"ours_p_within_2in", r.p_within_tolerance},
@@ -251,8 +250,10 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
     bool found = false;
     for (const ClassBoundary& d : derived) found = found || d.door_class == p.door_class;
     if (!found) {
-      out += fmt::format("  {:<6}  {:6.1f} {:6.1f}         (never the Bayes decision with these "
-                         "priors)\n", ToString(p.door_class), p.low_in, p.high_in);
+      out += fmt::format(
+          "  {:<6}  {:6.1f} {:6.1f}         (never the Bayes decision with these "
+          "priors)\n",
+          ToString(p.door_class), p.low_in, p.high_in);
     }
   }
   js["bayes_sigma_rel_fitted"] = fitted;

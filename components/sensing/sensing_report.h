@@ -1,11 +1,10 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "plot/bar_chart.h"
 #include "sensing/error_analysis.h"
@@ -17,10 +16,10 @@ namespace stickrep::sensing {
 // scene defaults (6 ft, 36 in door on the optical axis) are documented in docs/sensing.md.
 struct ReportOptions {
   std::uint64_t seed = 19930501;
-  int trials = 10000;               // §5.5: "Ten thousand trials at a given ... orientation"
-  double wall_distance_in = 72.0;   // §4.1.1: the six-foot reference viewing range
-  double door_width_in = 36.0;      // the most common class (Table 6.8)
-  double door_offset_in = 0.0;      // door centred where the optical axis meets the wall
+  int trials = 10000;              // §5.5: "Ten thousand trials at a given ... orientation"
+  double wall_distance_in = 72.0;  // §4.1.1: the six-foot reference viewing range
+  double door_width_in = 36.0;     // the most common class (Table 6.8)
+  double door_offset_in = 0.0;     // door centred where the optical axis meets the wall
   ShortSideEdges edges = ShortSideEdges::kPaperSensorRays;
   ErrorBounds bounds;
 };

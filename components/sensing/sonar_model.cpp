@@ -80,8 +80,7 @@ Result<double> RangeAlongRay(const SonarRingModel& ring, double returned_in,
   return Result<double>::Ok(wall_distance / std::cos(ray_incidence_rad));
 }
 
-PrintedCaseRanges PrintedExactRanges(double d_l, double d_r, double delta, double fov,
-                                     double r) {
+PrintedCaseRanges PrintedExactRanges(double d_l, double d_r, double delta, double fov, double r) {
   auto s = [](double deg) { return std::sin(DegToRad(deg)); };
   const double h = fov / 2.0;
   PrintedCaseRanges out;
@@ -97,17 +96,21 @@ PrintedCaseRanges PrintedExactRanges(double d_l, double d_r, double delta, doubl
     out.case_number = 3;
     out.rl_in = s(138 - delta) * s(150 - delta) / (s(delta + 30) * s(delta + h)) * d_l +
                 s(150 - delta) / s(delta + h) * r;
-    out.rr_in = s(delta + h - 72) * s(delta - 60 + h) / (s(240 - delta - h) * s(210 - delta)) * d_r +
-                s(delta - 60 + h) / s(210 - delta) * r;
+    out.rr_in =
+        s(delta + h - 72) * s(delta - 60 + h) / (s(240 - delta - h) * s(210 - delta)) * d_r +
+        s(delta - 60 + h) / s(210 - delta) * r;
   }
   return out;
 }
 
 const char* ToString(Surface s) {
   switch (s) {
-    case Surface::kCloth: return "cloth";
-    case Surface::kWood: return "wood";
-    case Surface::kConcrete: return "concrete";
+    case Surface::kCloth:
+      return "cloth";
+    case Surface::kWood:
+      return "wood";
+    case Surface::kConcrete:
+      return "concrete";
   }
   return "unknown";
 }
@@ -161,8 +164,10 @@ std::optional<PercentRangeError> SurfaceRangeError(Surface s, double phi_rad,
   const double phi_deg = std::abs(RadToDeg(phi_rad));
   if (!std::isfinite(phi_deg) || phi_deg > 45.0 + 1e-9) return std::nullopt;
   switch (which) {
-    case UltrasoundExperiment::kTable42: return FromTable(kTable42, s, phi_deg);
-    case UltrasoundExperiment::kTable43: return FromTable(kTable43, s, phi_deg);
+    case UltrasoundExperiment::kTable42:
+      return FromTable(kTable42, s, phi_deg);
+    case UltrasoundExperiment::kTable43:
+      return FromTable(kTable43, s, phi_deg);
     case UltrasoundExperiment::kWorseOfBoth: {
       const auto a = FromTable(kTable42, s, phi_deg);
       const auto b = FromTable(kTable43, s, phi_deg);

@@ -57,8 +57,8 @@ struct PrintedCaseRanges {
   double rl_in = 0.0;
   double rr_in = 0.0;
 };
-PrintedCaseRanges PrintedExactRanges(double d_l_in, double d_r_in, double delta_deg,
-                                     double fov_deg, double head_radius_in);
+PrintedCaseRanges PrintedExactRanges(double d_l_in, double d_r_in, double delta_deg, double fov_deg,
+                                     double head_radius_in);
 
 // The three surfaces of the ultrasound studies (§4.3).
 enum class Surface { kCloth, kWood, kConcrete };

@@ -40,8 +40,8 @@ TEST(ReturnedRangeTest, OutsideTheConeReturnsAlongTheNearestConeLimit) {
   // Case 2: sensor 30° off the normal; the cone limit is 30 - 11.8 = 18.2° off.
   const auto d = ReturnedRange(Ring(), 72.0, DegToRad(30.0));
   ASSERT_TRUE(d.ok());
-  EXPECT_THAT(*d, DoubleNear((72.0 - 7.5 * std::cos(DegToRad(30.0))) / std::cos(DegToRad(18.2)),
-                             1e-9));
+  EXPECT_THAT(*d,
+              DoubleNear((72.0 - 7.5 * std::cos(DegToRad(30.0))) / std::cos(DegToRad(18.2)), 1e-9));
 }
 
 TEST(ReturnedRangeTest, ACameraLookingAwayGetsNoEcho) {
@@ -73,8 +73,8 @@ TEST_P(PrintedCasesTest, PrintedLeftFormulaMatchesTheGeometry) {
   EXPECT_THAT(p.rl_in, DoubleNear(truth, 1e-9)) << "delta " << delta << " case " << p.case_number;
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases1To3, PrintedCasesTest, ::testing::Values(40.0, 47.0, 50.0, 60.0,
-                                                                         71.0, 75.0, 90.0));
+INSTANTIATE_TEST_SUITE_P(Cases1To3, PrintedCasesTest,
+                         ::testing::Values(40.0, 47.0, 50.0, 60.0, 71.0, 75.0, 90.0));
 
 TEST(PrintedCasesTest, PrintedCase2RightFormulaMatchesTheGeometry) {
   const double delta = 80.0, fov = 55.817;
@@ -86,7 +86,8 @@ TEST(PrintedCasesTest, PrintedCase2RightFormulaMatchesTheGeometry) {
 }
 
 TEST(SurfaceErrorTest, TabulatedCellsAreReturnedExactly) {
-  const auto c = SurfaceRangeError(Surface::kConcrete, DegToRad(15.0), UltrasoundExperiment::kTable42);
+  const auto c =
+      SurfaceRangeError(Surface::kConcrete, DegToRad(15.0), UltrasoundExperiment::kTable42);
   ASSERT_TRUE(c.has_value());
   EXPECT_DOUBLE_EQ(c->mean_pct, 2.2);
   EXPECT_DOUBLE_EQ(c->sigma_pct, 0.03);
@@ -96,19 +97,22 @@ TEST(SurfaceErrorTest, TabulatedCellsAreReturnedExactly) {
 }
 
 TEST(SurfaceErrorTest, InterpolatesBetweenTabulatedAngles) {
-  const auto c = SurfaceRangeError(Surface::kConcrete, DegToRad(7.5), UltrasoundExperiment::kTable42);
+  const auto c =
+      SurfaceRangeError(Surface::kConcrete, DegToRad(7.5), UltrasoundExperiment::kTable42);
   ASSERT_TRUE(c.has_value());
   EXPECT_THAT(c->mean_pct, DoubleNear((0.71 + 2.2) / 2.0, 1e-12));
 }
 
 TEST(SurfaceErrorTest, WorseOfBothPicksTheLargerMean) {
-  const auto c = SurfaceRangeError(Surface::kWood, DegToRad(30.0), UltrasoundExperiment::kWorseOfBoth);
+  const auto c =
+      SurfaceRangeError(Surface::kWood, DegToRad(30.0), UltrasoundExperiment::kWorseOfBoth);
   ASSERT_TRUE(c.has_value());
   EXPECT_DOUBLE_EQ(c->mean_pct, 16.0);
 }
 
 TEST(SurfaceErrorTest, BeyondFortyFiveDegreesAndClothAtFortyFiveAreGross) {
-  EXPECT_FALSE(SurfaceRangeError(Surface::kConcrete, DegToRad(50.0), UltrasoundExperiment::kTable42));
+  EXPECT_FALSE(
+      SurfaceRangeError(Surface::kConcrete, DegToRad(50.0), UltrasoundExperiment::kTable42));
   EXPECT_FALSE(SurfaceRangeError(Surface::kCloth, DegToRad(45.0), UltrasoundExperiment::kTable42));
 }
 
