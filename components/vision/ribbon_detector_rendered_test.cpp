@@ -43,8 +43,9 @@ Scene DoorScene(double width_in, DoorState state = DoorState::kClosed, double an
       options));
 }
 
-// Camera looking at the feature wall from range_in, the door centre `along_in` to the right
-// of the optical axis... in world x.
+// Robot heading +x with the camera looking at the feature wall from range_in; the optical
+// axis meets the wall `along_in` inches past the door centre (the door then appears left of
+// the image centre for positive along_in).
 Pose2d Facing(double width_in, double range_in, double along_in = 0.0) {
   return {kDoorStartIn + width_in / 2.0 + along_in, kHallwayWidthIn / 2.0 - range_in, 0.0};
 }
@@ -99,6 +100,12 @@ void ExpectDoorFound(const Outcome& out, double width_in, double range_in) {
   ASSERT_GE(k, 0) << "truth " << door.left_column_px << ", " << door.right_column_px << "; "
                   << Describe(det);
   EXPECT_LT(k, kTopPairs) << Describe(det);
+  // Kept in the XML report (--gtest_output=xml) for docs/vision.md.
+  ::testing::Test::RecordProperty("pair_rank", k);
+  ::testing::Test::RecordProperty(
+      "left_error_px", std::to_string(det.pairs[k].left_px - door.left_column_px));
+  ::testing::Test::RecordProperty(
+      "right_error_px", std::to_string(det.pairs[k].right_px - door.right_column_px));
   // Width in pixels consistent with the truth and, roughly, with the pinhole f * W / R.
   EXPECT_NEAR(det.pairs[k].width_px, door.right_column_px - door.left_column_px, kJambTolerancePx);
   const double f = CameraModel{}.focal_px();

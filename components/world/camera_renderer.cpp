@@ -132,11 +132,12 @@ std::optional<double> CameraRenderer::ColumnAtCenterRow(const Pose2d& X_WC,
   return model_.cx_px() + f_px_ * xr * (1.0 + model_.k1 * xr * xr);
 }
 
-void CameraRenderer::RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Mat* canvas) const {
+void CameraRenderer::RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Mat* canvas_t) const {
   const int ss = options_.supersample;
   const int cols = canvas_w_ * ss;
   const int rows = canvas_h_;
-  canvas->create(rows, cols, CV_32F);
+  // Transposed: one contiguous line of `rows` values per supersampled image column.
+  canvas_t->create(cols, rows, CV_32F);
 
   const World& world = scene.world();
   const std::vector<Panel>& panels = scene.panels();
@@ -146,60 +147,62 @@ void CameraRenderer::RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Ma
   const double cam_h = model_.height_in;
   const double ceiling = world.ceiling_height_in;
   const std::vector<int> near = scene.PanelsNear(origin, a, options_.max_range_in);
+  const float floor_value = static_cast<float>(world.floor_intensity);
+  const float ceiling_value = static_cast<float>(world.ceiling_intensity);
 
-  // Per column: the crossings that can be seen, nearest first, cut after the first panel
-  // that spans floor to ceiling (nothing behind it shows).
   struct Hit {
-    float t;
-    float bottom;
-    float top;
+    double t;
+    double bottom;
+    double top;
     float value;
   };
   std::vector<Hit> hits;
-  std::vector<int> begin(cols + 1, 0);
+  std::vector<double> breaks;
   std::vector<Scene::Crossing> crossings;
-  hits.reserve(static_cast<size_t>(cols) * 3);
+  // Row i looks along normalised y = y_min + (i + 0.5) / f (downward). A surface point at
+  // depth t is seen at height z = h - y t.
+  auto row_of = [&](double y) { return (y - y_min_) * f_px_ - 0.5; };
+  auto shade_row = [&](double y) {
+    for (const Hit& hit : hits) {
+      const double z = cam_h - y * hit.t;
+      if (z < 0.0) return floor_value;
+      if (z > ceiling) return ceiling_value;
+      if (z >= hit.bottom && z <= hit.top) return hit.value;
+    }
+    return y > 0.0 ? floor_value : ceiling_value;
+  };
+
   for (int j = 0; j < cols; ++j) {
-    begin[j] = static_cast<int>(hits.size());
     const double x = x_min_ + (j + 0.5) / (f_px_ * ss);
     const Eigen::Vector2d dir = a + x * r;  // unit depth along the optical axis
     scene.CastAll(origin, dir, options_.max_range_in, &crossings, &near);
+    // Visible crossings, nearest first, cut after the first panel that spans floor to
+    // ceiling (nothing behind it shows).
+    hits.clear();
+    breaks.clear();
     for (const Scene::Crossing& c : crossings) {
       const Panel& p = panels[c.panel_index];
       const double shade = kAmbientShare + (1.0 - kAmbientShare) * c.cos_incidence;
-      hits.push_back({static_cast<float>(c.t), static_cast<float>(p.bottom_in),
-                      static_cast<float>(p.top_in), static_cast<float>(p.intensity * shade)});
+      hits.push_back({c.t, p.bottom_in, p.top_in, static_cast<float>(p.intensity * shade)});
+      // Rows where this crossing's floor, ceiling, bottom or top edge is seen: the colour
+      // of the column is constant between consecutive breaks.
+      for (double z : {0.0, ceiling, p.bottom_in, p.top_in}) breaks.push_back((cam_h - z) / c.t);
       if (p.bottom_in <= 0.0 && p.top_in >= ceiling) break;
     }
-  }
-  begin[cols] = static_cast<int>(hits.size());
-
-  const float floor_value = static_cast<float>(world.floor_intensity);
-  const float ceiling_value = static_cast<float>(world.ceiling_intensity);
-  for (int i = 0; i < rows; ++i) {
-    const float y = static_cast<float>(y_min_ + (i + 0.5) / f_px_);  // downward
-    const float h = static_cast<float>(cam_h);
-    const float ceil_f = static_cast<float>(ceiling);
-    float* out = canvas->ptr<float>(i);
-    for (int j = 0; j < cols; ++j) {
-      float value = y > 0.0f ? floor_value : ceiling_value;
-      for (int k = begin[j]; k < begin[j + 1]; ++k) {
-        const Hit& hit = hits[k];
-        const float z = h - y * hit.t;
-        if (z < 0.0f) {
-          value = floor_value;
-          break;
-        }
-        if (z > ceil_f) {
-          value = ceiling_value;
-          break;
-        }
-        if (z >= hit.bottom && z <= hit.top) {
-          value = hit.value;
-          break;
-        }
+    breaks.push_back(0.0);  // the horizon, where an empty column turns from ceiling to floor
+    std::sort(breaks.begin(), breaks.end());
+    float* out = canvas_t->ptr<float>(j);
+    int i = 0;
+    for (size_t b = 0; b <= breaks.size() && i < rows; ++b) {
+      // Rows up to and including the last one strictly before the next break.
+      int end = rows;
+      if (b < breaks.size()) {
+        end = std::clamp(static_cast<int>(std::ceil(row_of(breaks[b]))), 0, rows);
       }
-      out[j] = value;
+      if (end <= i) continue;
+      const float value = shade_row(y_min_ + (i + 0.5) / f_px_);
+      std::fill(out + i, out + end, value);
+      i = end;
     }
   }
 }
@@ -208,14 +211,17 @@ RenderedFrame CameraRenderer::Render(const Scene& scene, const Pose2d& X_WR,
                                      const Illumination& light, std::mt19937_64& rng) const {
   RenderedFrame frame;
   const Pose2d X_WC = CameraPose(X_WR);
-  cv::Mat canvas;
-  RenderCanvas(scene, X_WC, &canvas);
-  cv::Mat ideal;
+  cv::Mat canvas_t;
+  RenderCanvas(scene, X_WC, &canvas_t);
+  cv::Mat ideal_t;
   if (options_.supersample > 1) {
-    cv::resize(canvas, ideal, cv::Size(canvas_w_, canvas_h_), 0, 0, cv::INTER_AREA);
+    // Area-average each group of supersampled columns (rows of the transposed canvas).
+    cv::resize(canvas_t, ideal_t, cv::Size(canvas_h_, canvas_w_), 0, 0, cv::INTER_AREA);
   } else {
-    ideal = canvas;
+    ideal_t = canvas_t;
   }
+  cv::Mat ideal;
+  cv::transpose(ideal_t, ideal);
   cv::Mat warped;
   cv::remap(ideal, warped, map1_, map2_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
 

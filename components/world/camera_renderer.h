@@ -122,7 +122,9 @@ class CameraRenderer {
   FrameTruth Truth(const Scene& scene, const Pose2d& X_WR) const;
 
  private:
-  void RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Mat* canvas) const;
+  // The ideal canvas, transposed (one row per supersampled column) so that each column is
+  // filled as a few constant runs.
+  void RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Mat* canvas_t) const;
 
   CameraModel model_;
   RenderOptions options_;
