@@ -1,0 +1,238 @@
+#include "stickrep/map_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "common/input_error.h"
+#include "stickrep/map_tool.h"
+#include "stickrep/test_maps.h"
+
+namespace stickrep::map {
+namespace {
+
+using testing::kBoxMapYaml;
+
+// The box map with `from` replaced by `to` (the text must contain `from`).
+std::string Edited(const std::string& from, const std::string& to) {
+  std::string text = kBoxMapYaml;
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+// 1-based line of the first occurrence of `needle` in `text`.
+int LineOf(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+InputError ParseError(const std::string& text) {
+  try {
+    ParseMap(text, "bad.yaml");
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "the map was accepted";
+  return InputError("", 0, "", "");
+}
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+TEST(MapIoTest, LoadsRingsEdgesNodesAndJoins) {
+  const Map map = ParseMap(kBoxMapYaml, "box.yaml");
+  ASSERT_EQ(map.RingCount(), 2);
+  EXPECT_EQ(map.EdgeCount(), 8);
+  const Ring& box = map.ring(0);
+  EXPECT_TRUE(box.closed);
+  EXPECT_EQ(box.EdgeCount(), 6);
+  EXPECT_EQ(box.NodeCount(), 6);
+  EXPECT_TRUE(box.edges[1].IsDoor());
+  EXPECT_EQ(*box.edges[1].door_class, DoorClass::k36);
+  EXPECT_DOUBLE_EQ(box.edges[1].metric_in, 36.0);
+  EXPECT_EQ(box.edges[1].pattern, "poster");
+  EXPECT_EQ(box.edges[1].prototype, Prototype::kDoorjam);
+  EXPECT_DOUBLE_EQ(box.nodes[3].angle_deg, 90.0);
+  EXPECT_DOUBLE_EQ(box.nodes[4].y_in, 0.0);
+  const Ring& strip = map.ring(1);
+  EXPECT_FALSE(strip.closed);
+  EXPECT_EQ(strip.NodeCount(), 3);
+  EXPECT_TRUE(strip.nodes[0].artificial);
+  ASSERT_EQ(map.joins().size(), 1u);
+  EXPECT_EQ(map.joins()[0].to_ring, "box");
+}
+
+TEST(MapIoTest, WrittenMapReadsBackToTheSameText) {
+  const Map map = ParseMap(kBoxMapYaml, "box.yaml");
+  const std::string text = WriteMapYaml(map);
+  const Map again = ParseMap(text, "again.yaml");
+  EXPECT_EQ(WriteMapYaml(again), text);
+  EXPECT_EQ(again.EdgeCount(), map.EdgeCount());
+}
+
+TEST(MapIoTest, MalformedYamlIsReportedWithItsLine) {
+  const InputError e = ParseError("stickrep_map: 1\nname: box\nrings: [ {id: a\n");
+  EXPECT_GT(e.line(), 0);
+  EXPECT_NE(e.reason().find("malformed YAML"), std::string::npos);
+}
+
+TEST(MapIoTest, MissingKeyNamesTheKey) {
+  const std::string text = Edited("    closed: true\n", "");
+  const InputError e = ParseError(text);
+  EXPECT_EQ(e.key(), "rings[0].closed");
+  EXPECT_NE(e.reason().find("missing"), std::string::npos);
+}
+
+TEST(MapIoTest, NegativeWallLengthIsRejectedAtItsLine) {
+  const std::string text = Edited("metric_in: 24}", "metric_in: -24}");
+  const InputError e = ParseError(text);
+  EXPECT_EQ(e.line(), LineOf(text, "metric_in: -24"));
+  EXPECT_NE(e.reason().find("> 0"), std::string::npos);
+}
+
+TEST(MapIoTest, ZeroWallLengthIsRejected) {
+  const InputError e = ParseError(Edited("metric_in: 24}", "metric_in: 0}"));
+  EXPECT_NE(e.reason().find("> 0"), std::string::npos);
+}
+
+TEST(MapIoTest, IllegalDoorClassIsRejected) {
+  const std::string text = Edited("class: \"36\"", "class: \"34\"");
+  const InputError e = ParseError(text);
+  EXPECT_EQ(e.line(), LineOf(text, "class: \"34\""));
+  EXPECT_NE(e.reason().find("not a legal door width"), std::string::npos);
+}
+
+TEST(MapIoTest, DoorMetricMustEqualItsClassWidth) {
+  const InputError e = ParseError(Edited("class: \"36\"", "class: \"36\", metric_in: 40"));
+  EXPECT_NE(e.reason().find("36 in wide"), std::string::npos);
+}
+
+TEST(MapIoTest, DanglingJoinIsRejected) {
+  const std::string text = Edited("to_ring: box", "to_ring: nowhere");
+  const InputError e = ParseError(text);
+  EXPECT_EQ(e.line(), LineOf(text, "to_ring: nowhere"));
+  EXPECT_NE(e.reason().find("no ring with id 'nowhere'"), std::string::npos);
+}
+
+TEST(MapIoTest, JoinAtANodeThatIsNotArtificialIsRejected) {
+  const InputError e = ParseError(Edited("{ring: strip, node: 0", "{ring: strip, node: 1"));
+  EXPECT_NE(e.reason().find("not artificial"), std::string::npos);
+}
+
+TEST(MapIoTest, JoinNodeOutOfRangeIsRejected) {
+  const InputError e = ParseError(Edited("to_node: 0}", "to_node: 6}"));
+  EXPECT_NE(e.reason().find("outside"), std::string::npos);
+}
+
+TEST(MapIoTest, UnknownKeyIsRejected) {
+  const std::string text = Edited("metric_in: 40}", "metric_in: 40, colour: red}");
+  const InputError e = ParseError(text);
+  EXPECT_EQ(e.line(), LineOf(text, "colour"));
+  EXPECT_NE(e.reason().find("unknown key"), std::string::npos);
+}
+
+TEST(MapIoTest, AngleOutOfRangeIsRejected) {
+  const InputError e = ParseError(Edited("angle_deg: 90, xyz_in: [100, 0, 0]",
+                                         "angle_deg: 400, xyz_in: [100, 0, 0]"));
+  EXPECT_NE(e.reason().find("outside [0, 360]"), std::string::npos);
+}
+
+TEST(MapIoTest, DuplicateRingIdIsRejected) {
+  const InputError e = ParseError(Edited("  - id: strip", "  - id: box"));
+  EXPECT_NE(e.reason().find("used by an earlier ring"), std::string::npos);
+}
+
+TEST(MapIoTest, ClosedRingThatDoesNotCloseIsRejected) {
+  const InputError e = ParseError(Edited("xyz_in: [0, 0, 0]}", "xyz_in: [0, 20, 0]}"));
+  EXPECT_NE(e.reason().find("nodes are"), std::string::npos);
+}
+
+TEST(MapIoTest, OpenRingMustEndWithANode) {
+  const std::string text = Edited("      - node: {angle_deg: 180, xyz_in: [82, 200, 0]}\n", "");
+  const InputError e = ParseError(text);
+  EXPECT_NE(e.reason().find("open ring ends with a node"), std::string::npos);
+}
+
+TEST(MapIoTest, NodesAndEdgesMustAlternate) {
+  const InputError e = ParseError(Edited(
+      "      - edge: {type: hallway, metric_in: 50}\n",
+      "      - edge: {type: hallway, metric_in: 25}\n      - edge: {type: hallway, metric_in: 25}\n"));
+  EXPECT_NE(e.reason().find("alternate"), std::string::npos);
+}
+
+TEST(MapIoTest, UnknownEdgeTypeIsRejected) {
+  const InputError e = ParseError(Edited("type: hallway, metric_in: 40", "type: window, metric_in: 40"));
+  EXPECT_NE(e.reason().find("unknown edge type"), std::string::npos);
+}
+
+TEST(MapIoTest, WrongFormatVersionIsRejected) {
+  const InputError e = ParseError(Edited("stickrep_map: 1", "stickrep_map: 2"));
+  EXPECT_EQ(e.key(), "stickrep_map");
+}
+
+TEST(MapIoTest, MissingFileIsAnInputError) {
+  EXPECT_THROW(LoadMap(::testing::TempDir() + "no_such_map.yaml"), InputError);
+}
+
+TEST(MapToolTest, ValidateExitsTwoWithFileLineKeyAndReason) {
+  const std::string text = Edited("class: \"36\"", "class: \"34\"");
+  const std::string path = WriteTemp("illegal_class.yaml", text);
+  std::ostringstream out, err;
+  EXPECT_EQ(tool::Validate({path}, out, err), kExitBadInput);
+  const std::string want =
+      path + ":" + std::to_string(LineOf(text, "class: \"34\"")) + ": key 'rings[0].path[3].edge.class'";
+  EXPECT_EQ(err.str().rfind(want, 0), 0u) << err.str();
+  std::remove(path.c_str());
+}
+
+TEST(MapToolTest, ValidateAcceptsAGoodMap) {
+  const std::string path = WriteTemp("box.yaml", kBoxMapYaml);
+  std::ostringstream out, err;
+  EXPECT_EQ(tool::Validate({path}, out, err), 0);
+  EXPECT_TRUE(err.str().empty());
+  std::remove(path.c_str());
+}
+
+TEST(MapToolTest, FiftyMegabytesOfGarbageExitsTwoWithoutReadingIt) {
+  const std::string path = ::testing::TempDir() + "garbage_50mb.yaml";
+  {
+    std::ofstream f(path, std::ios::binary);
+    std::mt19937_64 rng(7);
+    std::string block(1 << 20, '\0');
+    for (int mb = 0; mb < 50; ++mb) {
+      for (char& c : block) c = static_cast<char>(rng());
+      f << block;
+    }
+  }
+  std::ostringstream out, err;
+  EXPECT_EQ(tool::Validate({path}, out, err), kExitBadInput);
+  EXPECT_NE(err.str().find(path + ": file is 52428800 bytes"), std::string::npos) << err.str();
+  std::remove(path.c_str());
+}
+
+TEST(MapToolTest, BinaryGarbageUnderTheSizeLimitExitsTwo) {
+  const std::string path = WriteTemp("garbage_small.yaml", std::string("\x01\x02\x00\xff", 4));
+  std::ostringstream out, err;
+  EXPECT_EQ(tool::Validate({path}, out, err), kExitBadInput);
+  EXPECT_NE(err.str().find("NUL byte"), std::string::npos) << err.str();
+  std::remove(path.c_str());
+}
+
+TEST(MapToolTest, EveryCommandThatLoadsAMapExitsTwoOnABadOne) {
+  const std::string path = WriteTemp("dangling.yaml", Edited("to_ring: box", "to_ring: nowhere"));
+  std::ostringstream out, err;
+  EXPECT_EQ(tool::Census(path, false, std::nullopt, out, err), kExitBadInput);
+  EXPECT_EQ(tool::Ambiguity(path, {}, out, err), kExitBadInput);
+  EXPECT_EQ(tool::Render(path, ::testing::TempDir() + "x.png", out, err), kExitBadInput);
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace stickrep::map

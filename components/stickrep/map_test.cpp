@@ -1,0 +1,93 @@
+#include "stickrep/map.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "stickrep/map_io.h"
+#include "stickrep/test_maps.h"
+
+namespace stickrep::map {
+namespace {
+
+Map Box() { return ParseMap(testing::kBoxMapYaml, "box.yaml"); }
+
+TEST(MapTraversalTest, ForwardWrapsAroundAClosedRing) {
+  const Map map = Box();
+  Cursor c{0, 5, +1};
+  ASSERT_TRUE(map.Advance(c));
+  EXPECT_EQ(c.edge, 0);
+  EXPECT_DOUBLE_EQ(map.EdgeAt(0, 6).metric_in, 40.0);
+}
+
+TEST(MapTraversalTest, BackwardWrapsAroundAClosedRing) {
+  const Map map = Box();
+  Cursor c{0, 0, -1};
+  ASSERT_TRUE(map.Advance(c));
+  EXPECT_EQ(c.edge, 5);
+  EXPECT_EQ(map.Wrap(0, -1), 5);
+  EXPECT_EQ(map.Wrap(0, -13), 5);
+}
+
+TEST(MapTraversalTest, OpenRingStopsAtBothEnds) {
+  const Map map = Box();
+  Cursor fwd{1, 1, +1};
+  EXPECT_FALSE(map.Advance(fwd));
+  EXPECT_EQ(fwd.edge, 1);
+  Cursor back{1, 0, -1};
+  EXPECT_FALSE(map.Advance(back));
+  EXPECT_EQ(map.Wrap(1, 2), -1);
+}
+
+TEST(MapTraversalTest, NodeAheadDependsOnTheDirection) {
+  const Map map = Box();
+  // Edge 2 (wall 24) runs from node 2 (180) to node 3 (90).
+  EXPECT_DOUBLE_EQ(map.NodeAhead({0, 2, +1}).angle_deg, 90.0);
+  EXPECT_DOUBLE_EQ(map.NodeAhead({0, 2, -1}).angle_deg, 180.0);
+  EXPECT_DOUBLE_EQ(map.NodeBehind({0, 2, +1}).angle_deg, 180.0);
+  // The last edge of a closed ring ends at node 0.
+  EXPECT_DOUBLE_EQ(map.NodeAhead({0, 5, +1}).x_in, 0.0);
+  EXPECT_DOUBLE_EQ(map.NodeAhead({0, 5, +1}).y_in, 100.0);
+  // The last edge of an open ring ends at its extra node.
+  EXPECT_DOUBLE_EQ(map.NodeAhead({1, 1, +1}).x_in, 82.0);
+}
+
+TEST(MapTraversalTest, AFullLapVisitsEveryEdgeOnce) {
+  const Map map = Box();
+  Cursor c{0, 3, -1};
+  double sum = 0;
+  for (int i = 0; i < 6; ++i) {
+    sum += map.EdgeAt(c.ring, c.edge).metric_in;
+    ASSERT_TRUE(map.Advance(c));
+  }
+  EXPECT_DOUBLE_EQ(sum, 400.0);
+  EXPECT_EQ(c.edge, 3);
+}
+
+TEST(MapModelTest, FindsRingsById) {
+  const Map map = Box();
+  EXPECT_EQ(map.FindRing("strip"), 1);
+  EXPECT_EQ(map.FindRing("nope"), -1);
+}
+
+TEST(MapModelTest, ConstructorRejectsAWrongNodeCount) {
+  Ring ring;
+  ring.id = "r";
+  ring.closed = false;
+  ring.edges = {Edge::Wall(10)};
+  ring.nodes = {Node{}};
+  EXPECT_THROW(Map({}, {ring}), std::invalid_argument);
+}
+
+TEST(MapModelTest, DoorClassesRoundTripByName) {
+  for (int k = 0; k < kDoorClassCount; ++k) {
+    const auto cls = static_cast<DoorClass>(k);
+    EXPECT_EQ(ParseDoorClass(DoorClassName(cls)), cls);
+  }
+  EXPECT_DOUBLE_EQ(DoorClassWidthIn(DoorClass::k36_36), 72.0);
+  EXPECT_EQ(LeafClass(DoorClass::k30_30), DoorClass::k30);
+  EXPECT_FALSE(ParseDoorClass("34").has_value());
+}
+
+}  // namespace
+}  // namespace stickrep::map
