@@ -102,10 +102,10 @@ void ExpectDoorFound(const Outcome& out, double width_in, double range_in) {
   EXPECT_LT(k, kTopPairs) << Describe(det);
   // Kept in the XML report (--gtest_output=xml) for docs/vision.md.
   ::testing::Test::RecordProperty("pair_rank", k);
-  ::testing::Test::RecordProperty(
-      "left_error_px", std::to_string(det.pairs[k].left_px - door.left_column_px));
-  ::testing::Test::RecordProperty(
-      "right_error_px", std::to_string(det.pairs[k].right_px - door.right_column_px));
+  ::testing::Test::RecordProperty("left_error_px",
+                                  std::to_string(det.pairs[k].left_px - door.left_column_px));
+  ::testing::Test::RecordProperty("right_error_px",
+                                  std::to_string(det.pairs[k].right_px - door.right_column_px));
   // Width in pixels consistent with the truth and, roughly, with the pinhole f * W / R.
   EXPECT_NEAR(det.pairs[k].width_px, door.right_column_px - door.left_column_px, kJambTolerancePx);
   const double f = CameraModel{}.focal_px();
@@ -174,6 +174,64 @@ TEST(RibbonDetectorRenderedTest, BlankWallGivesNoCandidatePair) {
     EXPECT_TRUE(out.result.detection.pairs.empty())
         << "range " << range_in << ": " << Describe(out.result.detection);
   }
+}
+
+}  // namespace
+}  // namespace stickrep::vision
+
+namespace stickrep::vision {
+namespace {
+
+// A drive along a hallway inside the navigation envelope of §6.4.2 (within 1 ft of the
+// axis, optical axis within 7.5° of the wall normal), one frame every 6.24 in (0.2 s at
+// 2.6 ft/s). Every frame with a door fully in view (jambs 10 px or more inside the image)
+// must yield its jamb pair within 2 px among the first five candidates in most frames.
+TEST(RibbonDetectorRenderedTest, FindsMostDoorsAlongAnEnvelopeDrive) {
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> wall_len(48.0, 120.0);
+  std::uniform_int_distribution<int> pick(0, 5);
+  std::vector<HallwayFeature> features{HallwayFeature::Wall(120)};
+  for (int i = 0; i < 8; ++i) {
+    const int width = world::kDoorClassesIn[pick(rng)];
+    const DoorState state = i % 4 == 3 ? DoorState::kOpenInward : DoorState::kClosed;
+    features.push_back(HallwayFeature::Door(width, state, DegToRad(80.0)));
+    features.push_back(i % 3 == 1 ? HallwayFeature::Poster(wall_len(rng))
+                                  : HallwayFeature::Wall(wall_len(rng)));
+  }
+  HallwayOptions options;
+  options.width_in = 144.0;  // 6 ft from the axis to each wall
+  const Scene scene(world::MakeStraightHallway(features, options));
+  const CameraRenderer renderer{CameraModel{}};
+  const RibbonDetector detector;
+  std::uniform_real_distribution<double> offset_in(-12.0, 12.0);
+  std::uniform_real_distribution<double> yaw_rad(-DegToRad(7.5), DegToRad(7.5));
+
+  int eligible = 0, found_top = 0, found_any = 0, frames = 0;
+  const double length = world::HallwayLength(features);
+  for (double x = 60.0; x < length - 60.0; x += 6.24) {
+    const Pose2d X_WR{x, offset_in(rng), yaw_rad(rng)};
+    const RenderedFrame frame = renderer.Render(scene, X_WR, {}, rng);
+    const DetectResult result = detector.Detect(frame.image, frame.truth.axis_range_in);
+    ASSERT_TRUE(result.ok()) << result.message;
+    ++frames;
+    for (const world::DoorTruth& door : frame.truth.doors) {
+      if (!door.both_jambs_visible || door.left_column_px < 10.0 ||
+          door.right_column_px > 512 - 10.0) {
+        continue;
+      }
+      ++eligible;
+      const int k = MatchingPair(result.detection, door.left_column_px, door.right_column_px);
+      if (k >= 0) ++found_any;
+      if (k >= 0 && k < kTopPairs) ++found_top;
+    }
+  }
+  ::testing::Test::RecordProperty("frames", frames);
+  ::testing::Test::RecordProperty("door_views", eligible);
+  ::testing::Test::RecordProperty("found_in_top5", found_top);
+  ::testing::Test::RecordProperty("found_anywhere", found_any);
+  ASSERT_GT(eligible, 20);
+  EXPECT_GE(static_cast<double>(found_top) / eligible, 0.8)
+      << found_top << " of " << eligible << " door views (any rank: " << found_any << ")";
 }
 
 }  // namespace
