@@ -69,7 +69,8 @@ dds::DataReaderQos ToDataReaderQos(const QosProfile& p, dds::DataReaderQos q) {
   return q;
 }
 
-Participant::Participant(const ParticipantConfig& config, QosCatalog catalog)
+Participant::Participant(const ParticipantConfig& config, QosCatalog catalog,
+                         dds::DomainParticipantListener* listener)
     : config_(config), catalog_(std::move(catalog)) {
   auto* factory = dds::DomainParticipantFactory::get_instance();
   if (!config_.profile_xml.empty()) {
@@ -89,7 +90,8 @@ Participant::Participant(const ParticipantConfig& config, QosCatalog catalog)
     pqos = factory->get_default_participant_qos();  // the XML default profile, if any
   }
   pqos.name(config_.name);
-  participant_ = factory->create_participant(config_.domain_id, pqos);
+  participant_ = factory->create_participant(config_.domain_id, pqos, listener,
+                                             dds::StatusMask::none());
   if (participant_ == nullptr) {
     throw std::runtime_error("could not create a DDS participant on domain " +
                              std::to_string(config_.domain_id));

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -33,7 +34,9 @@ struct ParticipantConfig {
 class Participant {
  public:
   // Throws InputError if the XML profile cannot be loaded, std::runtime_error if DDS fails.
-  Participant(const ParticipantConfig& config, QosCatalog catalog);
+  // `listener`, if given, hears of remote endpoints being discovered (the console).
+  Participant(const ParticipantConfig& config, QosCatalog catalog,
+              eprosima::fastdds::dds::DomainParticipantListener* listener = nullptr);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;

@@ -1,0 +1,46 @@
+// stickrep-console: the base station's view of a StickRep domain.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "common/input_error.h"
+#include "console/console.h"
+#include "runtime/process.h"
+#include "runtime/system_config.h"
+
+int main(int argc, char** argv) {
+  using stickrep::console::ConsoleOptions;
+  CLI::App app{"StickRep remote console: list the topics of a domain, echo a topic"};
+  ConsoleOptions o;
+  o.system_file = stickrep::runtime::DefaultConfigDir() + "/system.yaml";
+  app.add_option("--system", o.system_file, "deployment settings (domain, QoS file)");
+  app.add_option("--domain", o.domain_id, "DDS domain id, overriding the system file")
+      ->check(CLI::Range(0, 232));
+  app.require_subcommand(1);
+  CLI::App* list = app.add_subcommand("list", "every topic on the domain with its QoS");
+  list->add_option("--wait", o.wait_s, "seconds to listen to discovery")->check(CLI::PositiveNumber);
+  list->add_flag("--json", o.json, "JSON instead of a table");
+  CLI::App* echo = app.add_subcommand("echo", "print the samples of a topic as JSON lines");
+  std::string topic;
+  echo->add_option("topic", topic, "e.g. robot/sonar")->required();
+  echo->add_option("--count", o.count, "stop after this many samples")->check(CLI::NonNegativeNumber);
+  echo->add_option("--timeout", o.timeout_s, "give up after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
+  }
+  stickrep::runtime::InstallSignalHandlers();
+  try {
+    if (*list) return stickrep::console::ListTopics(o, std::cout);
+    return stickrep::console::EchoTopic(o, topic, std::cout);
+  } catch (const stickrep::InputError& e) {
+    fmt::print(stderr, "stickrep-console: {}\n", e.what());
+    return stickrep::kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "stickrep-console: {}\n", e.what());
+    return 1;
+  }
+}

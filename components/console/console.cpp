@@ -1,0 +1,159 @@
+#include "console/console.h"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <ostream>
+
+#include "common/input_error.h"
+#include "console/message_json.h"
+#include "runtime/endpoint.h"
+#include "runtime/process.h"
+#include "runtime/system_config.h"
+
+namespace stickrep::console {
+
+namespace {
+
+struct Session {
+  runtime::SystemConfig system;
+  std::unique_ptr<runtime::DiscoveryListener> listener;
+  std::unique_ptr<runtime::Participant> participant;
+};
+
+Session Join(const ConsoleOptions& o) {
+  Session s;
+  s.system = runtime::SystemConfig::LoadFile(o.system_file);
+  if (o.domain_id >= 0) s.system.domain_id = o.domain_id;
+  s.listener = std::make_unique<runtime::DiscoveryListener>();
+  s.participant = std::make_unique<runtime::Participant>(
+      runtime::ParticipantConfig{s.system.domain_id, "stickrep-console",
+                                 s.system.fastdds_profile_xml, s.system.fastdds_profile_name},
+      runtime::QosCatalog::LoadFile(s.system.qos_file), s.listener.get());
+  return s;
+}
+
+std::string Seconds(double s) { return s <= 0.0 ? "-" : fmt::format("{:g} s", s); }
+
+// Makes a reader of `topic` that prints each sample as a JSON line.
+using EchoFactory = std::function<std::unique_ptr<runtime::Drainable>(
+    runtime::Participant&, runtime::Executor&, const std::string&, std::ostream&, int&)>;
+
+template <typename PubSubType>
+EchoFactory Echo() {
+  return [](runtime::Participant& p, runtime::Executor& ex, const std::string& topic,
+            std::ostream& out, int& printed) -> std::unique_ptr<runtime::Drainable> {
+    return std::make_unique<runtime::Reader<PubSubType>>(
+        p, ex, topic, [&out, &printed](const typename PubSubType::type& m) {
+          out << ToJson(m).dump() << '\n' << std::flush;
+          printed++;
+        });
+  };
+}
+
+const std::map<std::string, EchoFactory>& EchoFactories() {
+  static const std::map<std::string, EchoFactory> factories = {
+      {"stickrep::msgs::SonarEcho", Echo<msgs::SonarEchoPubSubType>()},
+      {"stickrep::msgs::SonarScan", Echo<msgs::SonarScanPubSubType>()},
+      {"stickrep::msgs::Image", Echo<msgs::ImagePubSubType>()},
+      {"stickrep::msgs::WheelCommand", Echo<msgs::WheelCommandPubSubType>()},
+      {"stickrep::msgs::EncoderReading", Echo<msgs::EncoderReadingPubSubType>()},
+      {"stickrep::msgs::MotionCommand", Echo<msgs::MotionCommandPubSubType>()},
+      {"stickrep::msgs::Odometry", Echo<msgs::OdometryPubSubType>()},
+      {"stickrep::msgs::LandmarkObservation", Echo<msgs::LandmarkObservationPubSubType>()},
+      {"stickrep::msgs::LocalizationPose", Echo<msgs::LocalizationPosePubSubType>()},
+      {"stickrep::msgs::PoseHypotheses", Echo<msgs::PoseHypothesesPubSubType>()},
+      {"stickrep::msgs::StickRepMap", Echo<msgs::StickRepMapPubSubType>()},
+      {"stickrep::msgs::MissionGoal", Echo<msgs::MissionGoalPubSubType>()},
+      {"stickrep::msgs::MissionStatus", Echo<msgs::MissionStatusPubSubType>()},
+      {"stickrep::msgs::ComponentStatus", Echo<msgs::ComponentStatusPubSubType>()},
+      {"stickrep::msgs::GroundTruth", Echo<msgs::GroundTruthPubSubType>()},
+  };
+  return factories;
+}
+
+}  // namespace
+
+void PrintTopicTable(const std::vector<runtime::TopicSummary>& topics, std::ostream& out) {
+  fmt::print(out, "{:<26} {:<36} {:>2} {:>2}  {:<11} {:<15} {:<11} {:<8} {:<9} {}\n", "TOPIC",
+             "TYPE", "W", "R", "RELIABILITY", "DURABILITY", "HISTORY", "DEADLINE", "LIVELINESS",
+             "PROFILE");
+  for (const auto& t : topics) {
+    fmt::print(out, "{:<26} {:<36} {:>2} {:>2}  {:<11} {:<15} {:<11} {:<8} {:<9} {}{}\n",
+               t.topic, t.type, t.writers, t.readers, t.reliability, t.durability, t.history,
+               Seconds(t.deadline_s), Seconds(t.liveliness_lease_s),
+               t.profile.empty() ? "-" : t.profile, t.mixed_qos ? " (endpoints differ)" : "");
+  }
+  fmt::print(out, "{} topics\n", topics.size());
+}
+
+int ListTopics(const ConsoleOptions& o, std::ostream& out) {
+  Session s = Join(o);
+  // Discovery is asynchronous: listen for the configured time, then report what was seen.
+  runtime::Executor ex;
+  std::atomic<bool>& running = runtime::KeepRunning();
+  ex.Spin(running, runtime::Executor::Clock::now() +
+                       std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                           std::chrono::duration<double>(o.wait_s)));
+  const auto topics = runtime::Summarise(s.listener->Endpoints());
+  if (o.json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& t : topics) {
+      list.push_back({{"topic", t.topic}, {"type", t.type}, {"writers", t.writers},
+                      {"readers", t.readers}, {"reliability", t.reliability},
+                      {"durability", t.durability}, {"history", t.history},
+                      {"deadline_s", t.deadline_s}, {"liveliness_lease_s", t.liveliness_lease_s},
+                      {"profile", t.profile}});
+    }
+    out << list.dump(2) << '\n';
+  } else {
+    PrintTopicTable(topics, out);
+  }
+  return 0;
+}
+
+int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& out) {
+  Session s = Join(o);
+  if (!s.participant->catalog().HasTopic(topic)) {
+    throw InputError(s.system.qos_file, 0, "qos.streams",
+                     "'" + topic + "' is not a StickRep topic (not in the QoS catalogue)");
+  }
+  // The type comes from discovery, so wait for a writer to announce it.
+  std::string type;
+  const bool found = runtime::WaitFor(
+      [&] {
+        for (const auto& e : s.listener->Endpoints()) {
+          if (e.topic == topic && e.is_writer) type = e.type;
+        }
+        return !type.empty() || !runtime::KeepRunning().load();
+      },
+      o.timeout_s > 0.0 ? o.timeout_s : 1e9);
+  if (!found || type.empty()) {
+    fmt::print(stderr, "no writer of {} appeared\n", topic);
+    return 1;
+  }
+  const auto factory = EchoFactories().find(type);
+  if (factory == EchoFactories().end()) {
+    fmt::print(stderr, "{} carries {}, a type this console cannot print\n", topic, type);
+    return 1;
+  }
+  runtime::Executor ex;
+  int printed = 0;
+  auto reader = factory->second(*s.participant, ex, topic, out, printed);
+  const auto until = o.timeout_s > 0.0
+                         ? runtime::Executor::Clock::now() +
+                               std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                                   std::chrono::duration<double>(o.timeout_s))
+                         : runtime::Executor::Clock::time_point::max();
+  while (runtime::KeepRunning().load() && runtime::Executor::Clock::now() < until &&
+         (o.count == 0 || printed < o.count)) {
+    ex.SpinOnce(std::chrono::milliseconds(50));
+  }
+  reader.reset();
+  return (o.count > 0 && printed < o.count) ? 1 : 0;
+}
+
+}  // namespace stickrep::console

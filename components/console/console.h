@@ -1,0 +1,31 @@
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "runtime/discovery.h"
+
+namespace stickrep::console {
+
+// Options shared by the console's commands.
+struct ConsoleOptions {
+  std::string system_file;
+  int domain_id = -1;          // -1: from the system file
+  double wait_s = 3.0;         // how long `list` listens to discovery
+  int count = 0;               // `echo`: stop after this many samples (0: until stopped)
+  double timeout_s = 0.0;      // `echo`: give up after this long (0: never)
+  bool json = false;
+};
+
+// `list`: every topic seen on the domain with its type, writer and reader counts and QoS.
+// Returns the process exit code.
+int ListTopics(const ConsoleOptions& options, std::ostream& out);
+
+// `echo TOPIC`: one JSON line per sample until the count, the timeout or a signal.
+int EchoTopic(const ConsoleOptions& options, const std::string& topic, std::ostream& out);
+
+// The table `list` prints, from summaries (kept apart from DDS for testing).
+void PrintTopicTable(const std::vector<runtime::TopicSummary>& topics, std::ostream& out);
+
+}  // namespace stickrep::console

@@ -1,0 +1,163 @@
+#include "landmark/landmark_node.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "basePubSubTypes.h"
+#include "landmark/landmark_pipeline.h"
+#include "perceptionPubSubTypes.h"
+#include "runtime/endpoint.h"
+#include "sensorsPubSubTypes.h"
+
+namespace stickrep::landmark {
+
+namespace {
+
+msgs::DoorClass ToMsg(sensing::DoorClass c) {
+  switch (c) {
+    case sensing::DoorClass::kDoor30: return msgs::DOOR_30;
+    case sensing::DoorClass::kDoor32: return msgs::DOOR_32;
+    case sensing::DoorClass::kDoor36: return msgs::DOOR_36;
+    case sensing::DoorClass::kDoor40: return msgs::DOOR_40;
+    case sensing::DoorClass::kDouble30: return msgs::DOOR_30_30;
+    case sensing::DoorClass::kDouble36: return msgs::DOOR_36_36;
+  }
+  return msgs::DOOR_REJECTED;
+}
+
+class LandmarkNode : public runtime::ProcessNode {
+ public:
+  void Configure(runtime::NodeContext& ctx) override {
+    ctx_ = &ctx;
+    const StrictYaml& c = ctx.config;
+    sensing::LandmarkEstimatorConfig estimator;
+    const std::string geometry = c.Get<std::string>("geometry");
+    if (geometry == "short_side") {
+      estimator.geometry = sensing::Geometry::kShortSide;
+    } else if (geometry == "two_side") {
+      estimator.geometry = sensing::Geometry::kTwoSide;
+    } else {
+      c.Fail("geometry", "'" + geometry + "' is not one of: short_side, two_side");
+    }
+    estimator.min_confidence = c.Get<double>("min_confidence", 0.0, 1.0);
+    vision::RibbonDetectorParams detector;
+    const std::string rows = c.Get<std::string>("row_mode");
+    if (rows == "five_rows") {
+      detector.row_mode = vision::RowMode::kFiveRows;
+    } else if (rows == "full_frame") {
+      detector.row_mode = vision::RowMode::kFullFrame;
+    } else {
+      c.Fail("row_mode", "'" + rows + "' is not one of: five_rows, full_frame");
+    }
+    max_scan_age_ns_ = static_cast<int64_t>(c.Get<double>("max_scan_age_s", 0.01, 2.0, "s") * 1e9);
+    c.Finish();
+    robot_ = sensing::LoadRobotConfigFile(ctx.system.robot_file);
+    pipeline_ = std::make_unique<LandmarkPipeline>(robot_, detector, estimator);
+
+    writer_ = std::make_unique<runtime::Writer<msgs::LandmarkObservationPubSubType>>(
+        ctx.participant, "perception/landmark");
+    scans_ = std::make_unique<runtime::Reader<msgs::SonarScanPubSubType>>(
+        ctx.participant, ctx.executor, "robot/sonar",
+        [this](const msgs::SonarScan& s) { OnScan(s); });
+    odometry_ = std::make_unique<runtime::Reader<msgs::OdometryPubSubType>>(
+        ctx.participant, ctx.executor, "robot/odometry",
+        [this](const msgs::Odometry& o) { OnOdometry(o); });
+    images_ = std::make_unique<runtime::Reader<msgs::ImagePubSubType>>(
+        ctx.participant, ctx.executor, "robot/camera/image",
+        [this](const msgs::Image& m) { OnImage(m); });
+  }
+
+  std::string Summary() const override {
+    return fmt::format("{} frames processed, {} doors observed, {} frames without a door",
+                       frames_, doors_, no_door_);
+  }
+
+ private:
+  void OnScan(const msgs::SonarScan& s) {
+    ctx_->counters.CountIn();
+    sensing::SonarScan scan;
+    for (size_t k = 0; k < s.range_in().size(); ++k) {
+      const double r = s.range_in()[k];
+      const bool valid = s.reading_state()[k] == msgs::SONAR_VALID;
+      if (valid && (!std::isfinite(r) || r <= 0.0)) {
+        ctx_->counters.Drop("robot/sonar", "a reading marked valid is not a positive range");
+        return;
+      }
+      scan.ranges_in.push_back(r);
+      scan.valid.push_back(valid);
+    }
+    last_scan_ = std::move(scan);
+    last_scan_ns_ = s.header().stamp_ns();
+  }
+
+  void OnOdometry(const msgs::Odometry& o) {
+    ctx_->counters.CountIn();
+    if (!std::isfinite(o.distance_in())) {
+      ctx_->counters.Drop("robot/odometry", "non-finite distance");
+      return;
+    }
+    distance_in_ = o.distance_in();
+  }
+
+  void OnImage(const msgs::Image& m) {
+    ctx_->counters.CountIn();
+    if (last_scan_ns_ == 0 || std::llabs(m.header().stamp_ns() - last_scan_ns_) > max_scan_age_ns_) {
+      ctx_->counters.Drop("robot/camera/image", "no sonar scan near the frame in time");
+      return;
+    }
+    frames_++;
+    const vision::ImageView view{static_cast<int>(m.width_px()), static_cast<int>(m.height_px()),
+                                 static_cast<int>(m.step_bytes()), m.encoding(), m.data().data(),
+                                 m.data().size()};
+    const FrameOutcome out = pipeline_->Process(view, last_scan_);
+    switch (out.kind) {
+      case FrameOutcome::Kind::kBadFrame:
+      case FrameOutcome::Kind::kNoRange:
+        ctx_->counters.Drop("robot/camera/image", out.reason);
+        return;
+      case FrameOutcome::Kind::kNoDoor:
+        no_door_++;
+        return;
+      case FrameOutcome::Kind::kObservation:
+        break;
+    }
+    const sensing::LandmarkObservation& o = out.observation;
+    msgs::LandmarkObservation msg;
+    msg.door_class(ToMsg(o.door_class));
+    msg.width_in(o.width_in);
+    msg.confidence(o.confidence);
+    msg.left_jamb_px(o.footprints.lj_px);
+    msg.right_jamb_px(o.footprints.rj_px);
+    msg.range_in(o.range_in);
+    msg.center_offset_in(out.center_offset_in);
+    msg.look_angle_rad(o.look_angle_rad);
+    msg.in_envelope(o.in_envelope);
+    msg.odometry_distance_in(distance_in_);
+    msg.image_stamp_ns(m.header().stamp_ns());
+    if (writer_->Publish(msg, m.header().stamp_ns())) {
+      ctx_->counters.CountOut();
+      doors_++;
+    }
+  }
+
+  runtime::NodeContext* ctx_ = nullptr;
+  sensing::RobotConfig robot_;
+  std::unique_ptr<LandmarkPipeline> pipeline_;
+  int64_t max_scan_age_ns_ = 300000000;
+  sensing::SonarScan last_scan_;
+  int64_t last_scan_ns_ = 0;
+  double distance_in_ = 0.0;
+  uint64_t frames_ = 0, doors_ = 0, no_door_ = 0;
+  std::unique_ptr<runtime::Writer<msgs::LandmarkObservationPubSubType>> writer_;
+  std::unique_ptr<runtime::Reader<msgs::SonarScanPubSubType>> scans_;
+  std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;
+  std::unique_ptr<runtime::Reader<msgs::ImagePubSubType>> images_;
+};
+
+}  // namespace
+
+std::unique_ptr<runtime::ProcessNode> MakeLandmarkNode() { return std::make_unique<LandmarkNode>(); }
+
+}  // namespace stickrep::landmark

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "stickrep/map.h"
+#include "stickrep/sequence_matcher.h"
+
+namespace stickrep::localizer {
+
+// One classified door in one frame, placed along the wall.
+struct DoorSighting {
+  map::DoorClass door_class = map::DoorClass::k36;
+  double width_in = 0.0;
+  double confidence = 0.0;
+  // Along-wall position of the door centre: the odometer reading at the frame plus the
+  // centre's offset from the optical axis.
+  double along_in = 0.0;
+};
+
+struct EdgeAssemblerConfig {
+  // Sightings whose centres are closer than this are the same door.
+  double same_door_in = 14.0;
+  // A door is complete once the optical axis is this far past its centre: then it cannot
+  // be seen again and its frames are all in (half the field of view's footprint at the
+  // usual range, plus margin).
+  double out_of_view_in = 48.0;
+  // Doors seen in fewer frames are dropped as spurious (a 36 in door stays in view for
+  // several frames at 6.24 in per frame, SPEC §8).
+  int min_frames = 2;
+  // Two doors whose facing jambs are closer than this have no wall between them
+  // (Table 6.2's door-door adjacencies).
+  double min_wall_in = 6.0;
+};
+
+// Assembles per-frame door sightings and the odometer into the sensed sequence of StickRep
+// edges (§6.3, Figure 6.2 steps 3-4): a door edge per tracked door (class by
+// confidence-weighted vote, width by median), and between consecutive doors a wall edge
+// whose length is the odometry distance between their facing jambs. The wall the robot
+// started in is only partly seen: its length is a lower bound.
+class EdgeAssembler {
+ public:
+  explicit EdgeAssembler(EdgeAssemblerConfig config = {}) : config_(config) {}
+
+  void AddSighting(const DoorSighting& s);
+  // Advances the odometer; returns the edges completed by this step, in travel order.
+  std::vector<map::SensedEdge> Advance(double odometer_in);
+  // Forgets everything: the next edges start a new sequence (deterministic recovery, §6.7).
+  // The robot is then inside a wall or door again, so the next wall is a lower bound.
+  void Restart();
+  int travel_direction() const { return direction_; }
+  // Odometer reading at the far end of the last emitted door; empty before the first.
+  std::optional<double> last_edge_end_in() const { return last_jamb_in_; }
+  // Edges emitted since the last Restart(), in order.
+  const std::vector<map::SensedEdge>& sequence() const { return sequence_; }
+
+ private:
+  struct Track {
+    double along_sum = 0.0;
+    int frames = 0;
+    double class_weight[map::kDoorClassCount] = {};
+    std::vector<double> widths;
+    double along() const { return along_sum / frames; }
+  };
+  void Emit(const Track& t, std::vector<map::SensedEdge>& out);
+
+  EdgeAssemblerConfig config_;
+  std::vector<Track> open_;
+  std::vector<map::SensedEdge> sequence_;
+  double odometer_in_ = 0.0;
+  bool have_odometer_ = false;
+  double start_in_ = 0.0;             // odometer where the current sequence began
+  int direction_ = 0;                 // +1 / -1 once the robot has moved
+  std::optional<double> last_jamb_in_;  // trailing jamb of the last emitted door
+};
+
+}  // namespace stickrep::localizer

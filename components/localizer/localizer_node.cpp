@@ -1,0 +1,187 @@
+#include "localizer/localizer_node.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "basePubSubTypes.h"
+#include "localizationPubSubTypes.h"
+#include "localizer/localizer.h"
+#include "perceptionPubSubTypes.h"
+#include "runtime/endpoint.h"
+#include "stickrep/map_io.h"
+
+namespace stickrep::localizer {
+
+namespace {
+
+std::optional<map::DoorClass> FromMsg(msgs::DoorClass c) {
+  switch (c) {
+    case msgs::DOOR_30: return map::DoorClass::k30;
+    case msgs::DOOR_32: return map::DoorClass::k32;
+    case msgs::DOOR_36: return map::DoorClass::k36;
+    case msgs::DOOR_40: return map::DoorClass::k40;
+    case msgs::DOOR_30_30: return map::DoorClass::k30_30;
+    case msgs::DOOR_36_36: return map::DoorClass::k36_36;
+    default: return std::nullopt;
+  }
+}
+
+msgs::LocalizationStatus ToMsg(Status s) {
+  switch (s) {
+    case Status::kRecovering: return msgs::LOCALIZATION_RECOVERING;
+    case Status::kLocalized: return msgs::LOCALIZATION_LOCALIZED;
+    case Status::kLost: return msgs::LOCALIZATION_LOST;
+  }
+  return msgs::LOCALIZATION_RECOVERING;
+}
+
+msgs::StickRepMap ToMsg(const map::Map& m) {
+  msgs::StickRepMap out;
+  out.name(m.info().name);
+  for (const map::Ring& r : m.rings()) {
+    msgs::MapRing ring;
+    ring.ring_id(r.id);
+    ring.closed(r.closed);
+    for (int i = 0; i < r.EdgeCount(); ++i) {
+      const map::Edge& e = r.edges[i];
+      msgs::MapEdge edge;
+      edge.kind(static_cast<msgs::EdgeKind>(static_cast<int>(e.type)));
+      edge.metric_in(e.metric_in);
+      edge.door_class(e.door_class ? map::DoorClassName(*e.door_class) : "");
+      edge.pattern(e.pattern);
+      edge.start_angle_deg(r.nodes[i].angle_deg);
+      edge.x_in(r.nodes[i].x_in);
+      edge.y_in(r.nodes[i].y_in);
+      ring.edges().push_back(edge);
+    }
+    out.rings().push_back(ring);
+  }
+  return out;
+}
+
+class LocalizerNode : public runtime::ProcessNode {
+ public:
+  void Configure(runtime::NodeContext& ctx) override {
+    ctx_ = &ctx;
+    const StrictYaml& c = ctx.config;
+    LocalizerConfig config;
+    config.tolerance.metric_rel = c.Get<double>("metric_tolerance_rel", 0.0, 1.0);
+    config.tolerance.metric_abs_in = c.Get<double>("metric_tolerance_abs_in", 0.0, 120.0, "in");
+    config.tolerance.angle_deg = -1.0;  // adjacency angles are not sensed yet
+    config.assembler.same_door_in = c.Get<double>("same_door_in", 1.0, 60.0, "in");
+    config.assembler.out_of_view_in = c.Get<double>("out_of_view_in", 6.0, 240.0, "in");
+    config.assembler.min_frames = c.Get<int>("min_frames", 1, 20);
+    config.assembler.min_wall_in = c.Get<double>("min_wall_in", 0.0, 60.0, "in");
+    config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
+    const double publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
+    c.Finish();
+    map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
+    localizer_ = std::make_unique<Localizer>(*map_, config);
+    ctx.log->info("map '{}': {} rings, {} edges", map_->info().name, map_->RingCount(),
+                  map_->EdgeCount());
+
+    pose_ = std::make_unique<runtime::Writer<msgs::LocalizationPosePubSubType>>(
+        ctx.participant, "localization/pose");
+    hypotheses_ = std::make_unique<runtime::Writer<msgs::PoseHypothesesPubSubType>>(
+        ctx.participant, "localization/hypotheses");
+    map_writer_ = std::make_unique<runtime::Writer<msgs::StickRepMapPubSubType>>(
+        ctx.participant, "map/stickrep");
+    landmarks_ = std::make_unique<runtime::Reader<msgs::LandmarkObservationPubSubType>>(
+        ctx.participant, ctx.executor, "perception/landmark",
+        [this](const msgs::LandmarkObservation& o) { OnLandmark(o); });
+    odometry_ = std::make_unique<runtime::Reader<msgs::OdometryPubSubType>>(
+        ctx.participant, ctx.executor, "robot/odometry",
+        [this](const msgs::Odometry& o) { OnOdometry(o); });
+    ctx.executor.AddTimer(1.0 / publish_rate_hz, [this] { PublishPose(); });
+  }
+
+  void Activate() override {
+    msgs::StickRepMap m = ToMsg(*map_);
+    map_writer_->Publish(m, ctx_->now_ns());
+    PublishPose();
+  }
+
+  std::string Summary() const override {
+    const PoseEstimate& e = localizer_->estimate();
+    return fmt::format("{} landmarks used, {} edges sensed, {} restarts; status {} with {} "
+                       "candidates",
+                       landmarks_used_, localizer_->edges_total(), localizer_->restarts(),
+                       ToString(e.status), e.candidates);
+  }
+
+ private:
+  void OnLandmark(const msgs::LandmarkObservation& o) {
+    ctx_->counters.CountIn();
+    const auto door = FromMsg(o.door_class());
+    if (!door) {
+      ctx_->counters.Drop("perception/landmark", "not a door class");
+      return;
+    }
+    if (!std::isfinite(o.width_in()) || o.width_in() <= 0.0 ||
+        !std::isfinite(o.odometry_distance_in()) || !std::isfinite(o.center_offset_in())) {
+      ctx_->counters.Drop("perception/landmark", "non-finite or non-positive width or position");
+      return;
+    }
+    localizer_->AddSighting(
+        {*door, o.width_in(), o.confidence(), o.odometry_distance_in() + o.center_offset_in()});
+    landmarks_used_++;
+  }
+
+  void OnOdometry(const msgs::Odometry& o) {
+    ctx_->counters.CountIn();
+    if (!std::isfinite(o.distance_in())) {
+      ctx_->counters.Drop("robot/odometry", "non-finite distance");
+      return;
+    }
+    if (localizer_->Advance(o.distance_in())) {
+      const PoseEstimate& e = localizer_->estimate();
+      ctx_->log->info("{}: {} ({} edges sensed)", ToString(e.status), e.message, e.edges_sensed);
+      PublishPose();
+    }
+  }
+
+  void PublishPose() {
+    const PoseEstimate& e = localizer_->estimate();
+    msgs::LocalizationPose p;
+    p.status(ToMsg(e.status));
+    p.candidate_count(static_cast<uint32_t>(e.candidates));
+    p.confidence(e.confidence);
+    p.edges_sensed(static_cast<uint32_t>(e.edges_sensed));
+    p.message(e.message);
+    msgs::PoseHypotheses hs;
+    for (const Hypothesis& h : e.hypotheses) {
+      msgs::PoseHypothesis m;
+      m.ring_id(map_->ring(h.ring).id);
+      m.edge_index(static_cast<uint32_t>(h.edge));
+      m.forward(h.dir > 0);
+      m.offset_in(h.offset_in);
+      m.pose().x_in(h.x_in);
+      m.pose().y_in(h.y_in);
+      m.pose().heading_rad(h.heading_rad);
+      m.probability(h.probability);
+      hs.hypotheses().push_back(m);
+    }
+    if (!hs.hypotheses().empty()) p.best(hs.hypotheses().front());
+    if (pose_->Publish(p, ctx_->now_ns())) ctx_->counters.CountOut();
+    hypotheses_->Publish(hs, ctx_->now_ns());
+  }
+
+  runtime::NodeContext* ctx_ = nullptr;
+  std::unique_ptr<map::Map> map_;
+  std::unique_ptr<Localizer> localizer_;
+  uint64_t landmarks_used_ = 0;
+  std::unique_ptr<runtime::Writer<msgs::LocalizationPosePubSubType>> pose_;
+  std::unique_ptr<runtime::Writer<msgs::PoseHypothesesPubSubType>> hypotheses_;
+  std::unique_ptr<runtime::Writer<msgs::StickRepMapPubSubType>> map_writer_;
+  std::unique_ptr<runtime::Reader<msgs::LandmarkObservationPubSubType>> landmarks_;
+  std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;
+};
+
+}  // namespace
+
+std::unique_ptr<runtime::ProcessNode> MakeLocalizerNode() {
+  return std::make_unique<LocalizerNode>();
+}
+
+}  // namespace stickrep::localizer

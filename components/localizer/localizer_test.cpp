@@ -1,0 +1,145 @@
+#include "localizer/localizer.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace stickrep::localizer {
+namespace {
+
+using ::testing::DoubleNear;
+
+map::Map MakeMap(const std::vector<map::Edge>& edges) {
+  map::Ring ring;
+  ring.id = "hall";
+  ring.edges = edges;
+  ring.nodes.resize(edges.size());
+  double x = 0.0;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    ring.nodes[i].x_in = x;
+    x += edges[i].metric_in;
+  }
+  return map::Map(map::MapInfo{"test", "", "", std::nullopt}, {ring});
+}
+
+// Drives along the straightened ring from `start_in` in steps of 6.24 in (one frame per
+// 0.2 s at 2.6 ft/s), sighting every door whose centre is within `view_in` of the optical
+// axis, and feeds the localizer. Returns the odometer when it first reports LOCALIZED, or
+// a negative value.
+double DriveUntilLocalized(const map::Map& map, Localizer& loc, double start_in, int dir,
+                           double max_travel_in, double view_in = 14.0) {
+  const map::Ring& ring = map.ring(0);
+  double length = 0.0;
+  std::vector<double> centre;
+  for (const auto& e : ring.edges) {
+    centre.push_back(length + e.metric_in / 2.0);
+    length += e.metric_in;
+  }
+  for (double travel = 0.0; travel <= max_travel_in; travel += 6.24) {
+    const double axis = start_in + dir * travel;
+    for (std::size_t i = 0; i < ring.edges.size(); ++i) {
+      if (!ring.edges[i].IsDoor()) continue;
+      for (double lap : {-length, 0.0, length}) {
+        const double offset = centre[i] + lap - axis;  // along the ring order
+        if (std::abs(offset) <= view_in) {
+          loc.AddSighting({*ring.edges[i].door_class, ring.edges[i].metric_in, 0.9,
+                           dir * travel + offset});
+        }
+      }
+    }
+    loc.Advance(dir * travel);
+    if (loc.estimate().status == Status::kLocalized) return travel;
+  }
+  return -1.0;
+}
+
+std::vector<map::Edge> DistinctHall() {
+  using map::DoorClass;
+  using map::Edge;
+  return {Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(80),  Edge::Door(DoorClass::k36),
+          Edge::Wall(200), Edge::Door(DoorClass::k36), Edge::Wall(96),  Edge::Door(DoorClass::k40),
+          Edge::Wall(150), Edge::Door(DoorClass::k36), Edge::Wall(64),  Edge::Door(DoorClass::k32)};
+}
+
+TEST(EdgeAssemblerTest, TwoDoorsGiveAPartialWallADoorAnExactWallAndADoor) {
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  // Doors centred at 100 (36 in) and 250 (40 in) along the wall; robot from 0 forward.
+  for (double odo = 0.0; odo <= 320.0; odo += 6.0) {
+    for (auto [centre, width] : {std::pair{100.0, 36.0}, std::pair{250.0, 40.0}}) {
+      if (std::abs(centre - odo) < 12.0) {
+        a.AddSighting({width == 36.0 ? map::DoorClass::k36 : map::DoorClass::k40, width, 0.8,
+                       centre});
+      }
+    }
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 4u);
+  EXPECT_EQ(edges[0].code, map::kWallCode);
+  EXPECT_TRUE(edges[0].metric_is_lower_bound);
+  EXPECT_THAT(edges[0].metric_in, DoubleNear(82.0, 1e-9));
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36));
+  EXPECT_FALSE(edges[2].metric_is_lower_bound);
+  EXPECT_THAT(edges[2].metric_in, DoubleNear(250.0 - 20.0 - 118.0, 1e-9));
+  EXPECT_EQ(edges[3].code, map::DoorCode(map::DoorClass::k40));
+}
+
+TEST(EdgeAssemblerTest, DoorSeenInOneFrameOnlyIsDroppedAsSpurious) {
+  EdgeAssembler a;
+  a.Advance(0.0);
+  a.AddSighting({map::DoorClass::k36, 36.0, 0.8, 30.0});
+  EXPECT_TRUE(a.Advance(200.0).empty());
+}
+
+TEST(EdgeAssemblerTest, BackwardTravelOrdersEdgesByDecreasingPosition) {
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  for (double odo = 0.0; odo >= -320.0; odo -= 6.0) {
+    for (auto [centre, width] : {std::pair{-100.0, 36.0}, std::pair{-250.0, 40.0}}) {
+      if (std::abs(centre - odo) < 12.0) {
+        a.AddSighting({width == 36.0 ? map::DoorClass::k36 : map::DoorClass::k40, width, 0.8,
+                       centre});
+      }
+    }
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 4u);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36));
+  EXPECT_EQ(edges[3].code, map::DoorCode(map::DoorClass::k40));
+  EXPECT_THAT(edges[2].metric_in, DoubleNear(112.0, 1e-9));
+}
+
+TEST(LocalizerTest, ExactSightingsForwardRecoverTheTruePose) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map);
+  ASSERT_GT(DriveUntilLocalized(map, loc, 10.0, +1, 3000.0), 0.0);
+  const Hypothesis& h = loc.estimate().hypotheses.front();
+  EXPECT_EQ(loc.estimate().candidates, 1u);
+  EXPECT_EQ(h.dir, +1);
+  EXPECT_EQ(loc.restarts(), 0u);
+}
+
+TEST(LocalizerTest, ExactSightingsBackwardRecoverTheReverseDirection) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map);
+  ASSERT_GT(DriveUntilLocalized(map, loc, 900.0, -1, 3000.0), 0.0);
+  EXPECT_EQ(loc.estimate().hypotheses.front().dir, -1);
+}
+
+TEST(LocalizerTest, SequenceThatFitsNowhereIsDiscardedAndRecoveryStartsAgain) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map);
+  loc.Advance(0.0);
+  // A door40 followed by a door32 after 20 in of wall appears nowhere on the map.
+  for (double odo = 0.0; odo <= 200.0; odo += 6.0) {
+    if (std::abs(odo - 60.0) < 12.0) loc.AddSighting({map::DoorClass::k40, 40.0, 0.9, 60.0});
+    if (std::abs(odo - 110.0) < 12.0) loc.AddSighting({map::DoorClass::k32, 32.0, 0.9, 110.0});
+    loc.Advance(odo);
+  }
+  EXPECT_GE(loc.restarts(), 1u);
+  EXPECT_NE(loc.estimate().status, Status::kLocalized);
+}
+
+}  // namespace
+}  // namespace stickrep::localizer

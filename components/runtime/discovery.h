@@ -1,0 +1,60 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "runtime/participant.h"
+
+namespace stickrep::runtime {
+
+// One endpoint seen on the domain through DDS discovery.
+struct DiscoveredEndpoint {
+  std::string topic;
+  std::string type;
+  bool is_writer = false;
+  std::string reliability;       // "reliable" / "best_effort"
+  std::string durability;        // "volatile" / "transient_local" / ...
+  double deadline_s = 0.0;       // 0: none
+  double liveliness_lease_s = 0; // 0: infinite
+  std::string user_data;         // StickRep endpoints carry their profile and history here
+};
+
+// Everything known of one topic, summed over its endpoints.
+struct TopicSummary {
+  std::string topic;
+  std::string type;
+  int writers = 0;
+  int readers = 0;
+  std::string reliability;
+  std::string durability;
+  std::string history;           // from the endpoints' user_data ("keep_last 5"), or "?"
+  double deadline_s = 0.0;
+  double liveliness_lease_s = 0.0;
+  std::string profile;
+  bool mixed_qos = false;        // endpoints disagree on reliability or durability
+};
+
+// Listens to DDS discovery and keeps the set of remote writers and readers by GUID.
+class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListener {
+ public:
+  void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
+  void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                               eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
+  std::vector<DiscoveredEndpoint> Endpoints() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, DiscoveredEndpoint> by_guid_;
+};
+
+// Folds endpoints into one summary per topic, sorted by topic name.
+std::vector<TopicSummary> Summarise(const std::vector<DiscoveredEndpoint>& endpoints);
+
+// Reads "key=value" from a StickRep user_data text; empty if absent.
+std::string UserDataField(const std::string& user_data, const std::string& key);
+
+}  // namespace stickrep::runtime

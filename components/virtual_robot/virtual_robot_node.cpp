@@ -1,0 +1,183 @@
+#include "virtual_robot/virtual_robot_node.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <random>
+
+#include "basePubSubTypes.h"
+#include "runtime/endpoint.h"
+#include "sensing/robot_config.h"
+#include "sensorsPubSubTypes.h"
+#include "stickrep/map_io.h"
+#include "systemPubSubTypes.h"
+#include "virtual_robot/hallway_sim.h"
+
+namespace stickrep::virtual_robot {
+
+namespace {
+
+class VirtualRobotNode : public runtime::ProcessNode {
+ public:
+  void Configure(runtime::NodeContext& ctx) override {
+    ctx_ = &ctx;
+    const StrictYaml& c = ctx.config;
+    const std::string source = c.Get<std::string>("source");
+    if (source == "replay") {
+      c.Fail("source", "replaying a recording is not built yet; use 'simulated'");
+    } else if (source != "simulated") {
+      c.Fail("source", "'" + source + "' is not one of: simulated, replay");
+    }
+    const auto seed = c.Get<uint64_t>("seed");
+    double start_in = c.Get<double>("start_offset_in", -1.0, 1e7, "in");
+    SimWorldConfig world;
+    world.ring_id = c.Get<std::string>("ring_id");
+    world.hallway_width_in = c.Get<double>("hallway_width_in", 36.0, 600.0, "in");
+    world.image_noise_sigma = c.Get<double>("image_noise_sigma", 0.0, 50.0, "grey levels");
+    const double sim_rate_hz = c.Get<double>("sim_rate_hz", 1.0, 1000.0, "Hz");
+    const double encoder_rate_hz = c.Get<double>("encoder_rate_hz", 1.0, 200.0, "Hz");
+    const double sonar_rate_hz = c.Get<double>("sonar_rate_hz", 0.5, 50.0, "Hz");
+    const double camera_rate_hz = c.Get<double>("camera_rate_hz", 0.5, 60.0, "Hz");
+    wheel_timeout_s_ = c.Get<double>("wheel_command_timeout_s", 0.05, 5.0, "s");
+    c.Finish();
+
+    const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
+    SimRobotConfig r;
+    r.wheel_base_in = robot.base.wheel_base_in;
+    r.max_speed_ftps = robot.base.max_speed_ftps;
+    r.sonar_count = robot.sonar_ring.count;
+    r.sonar_spacing_deg = robot.sonar_ring.spacing_deg;
+    r.head_radius_in = robot.sonar_ring.head_radius_in;
+    r.sonar_max_range_in = robot.sonar_ring.max_range_in;
+    r.coaxial_sensor = robot.camera.coaxial_sensor;
+    r.image_width_px = robot.camera.image_width_px;
+    r.image_height_px = robot.camera.image_height_px;
+    r.fov_deg = robot.camera.fov_deg;
+    width_px_ = static_cast<uint32_t>(r.image_width_px);
+    height_px_ = static_cast<uint32_t>(r.image_height_px);
+
+    const map::Map map = map::LoadMap(ctx.system.map_file);
+    try {
+      sim_ = std::make_unique<HallwaySim>(map, world, r, 0.0, seed);
+    } catch (const std::invalid_argument& e) {
+      c.Fail("ring_id", e.what());
+    }
+    if (start_in < 0.0) {
+      std::mt19937_64 pick(seed);
+      start_in = std::uniform_real_distribution<double>(0.0, sim_->ring_length_in())(pick);
+    }
+    sim_ = std::make_unique<HallwaySim>(map, world, r, start_in, seed);
+    const SimTruth t = sim_->Truth();
+    ctx.log->info("simulating ring '{}' of {} ({:.0f} in); seed {}; start {:.1f} in = edge {} "
+                  "+ {:.1f} in",
+                  sim_->ring_id(), map.info().name, sim_->ring_length_in(), seed, t.x_in,
+                  t.edge_index, t.offset_in);
+
+    encoders_ = std::make_unique<runtime::Writer<msgs::EncoderReadingPubSubType>>(
+        ctx.participant, "device/base/encoders");
+    sonar_ = std::make_unique<runtime::Writer<msgs::SonarEchoPubSubType>>(ctx.participant,
+                                                                         "device/sonar/echo");
+    camera_ = std::make_unique<runtime::Writer<msgs::ImagePubSubType>>(ctx.participant,
+                                                                      "device/camera/frame");
+    truth_ = std::make_unique<runtime::Writer<msgs::GroundTruthPubSubType>>(ctx.participant,
+                                                                           "sim/ground_truth");
+    wheels_ = std::make_unique<runtime::Reader<msgs::WheelCommandPubSubType>>(
+        ctx.participant, ctx.executor, "device/base/wheel_command",
+        [this](const msgs::WheelCommand& w) { OnWheels(w); });
+    sim_period_s_ = 1.0 / sim_rate_hz;
+    ctx.executor.AddTimer(sim_period_s_, [this] { StepSim(); });
+    ctx.executor.AddTimer(1.0 / encoder_rate_hz, [this] { PublishEncoders(); });
+    ctx.executor.AddTimer(1.0 / sonar_rate_hz, [this] { PublishSonar(); });
+    ctx.executor.AddTimer(1.0 / camera_rate_hz, [this] { PublishFrame(); });
+  }
+
+  void Activate() override { last_step_ns_ = ctx_->now_ns(); }
+
+  std::string Summary() const override {
+    const SimTruth t = sim_->Truth();
+    return fmt::format("{} frames, {} sonar scans served; travelled {:.1f} in, now on edge {} of "
+                       "ring '{}'",
+                       frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id());
+  }
+
+ private:
+  void OnWheels(const msgs::WheelCommand& w) {
+    ctx_->counters.CountIn();
+    if (!std::isfinite(w.left_speed_ftps()) || !std::isfinite(w.right_speed_ftps())) {
+      ctx_->counters.Drop("device/base/wheel_command", "non-finite wheel speed");
+      return;
+    }
+    left_ftps_ = w.left_speed_ftps();
+    right_ftps_ = w.right_speed_ftps();
+    last_wheels_ns_ = ctx_->now_ns();
+  }
+
+  void StepSim() {
+    const int64_t now = ctx_->now_ns();
+    // The base's watchdog: no set-point for a while means stop.
+    if (now - last_wheels_ns_ > wheel_timeout_s_ * 1e9) left_ftps_ = right_ftps_ = 0.0;
+    sim_->Step((now - last_step_ns_) * 1e-9, left_ftps_, right_ftps_);
+    last_step_ns_ = now;
+  }
+
+  void PublishEncoders() {
+    msgs::EncoderReading e;
+    e.left_travel_in(sim_->left_travel_in());
+    e.right_travel_in(sim_->right_travel_in());
+    if (encoders_->Publish(e, ctx_->now_ns())) ctx_->counters.CountOut();
+    const SimTruth t = sim_->Truth();
+    msgs::GroundTruth g;
+    g.pose().x_in(t.x_in);
+    g.pose().y_in(t.y_in);
+    g.pose().heading_rad(t.heading_rad);
+    g.ring_id(sim_->ring_id());
+    g.edge_index(static_cast<uint32_t>(t.edge_index));
+    g.offset_in(t.offset_in);
+    g.distance_in(t.distance_in);
+    truth_->Publish(g, ctx_->now_ns());
+  }
+
+  void PublishSonar() {
+    msgs::SonarEcho s;
+    s.range_in(sim_->Sonar());
+    if (sonar_->Publish(s, ctx_->now_ns())) {
+      ctx_->counters.CountOut();
+      scans_++;
+    }
+  }
+
+  void PublishFrame() {
+    msgs::Image img;
+    img.width_px(width_px_);
+    img.height_px(height_px_);
+    img.step_bytes(img.width_px());
+    img.encoding("mono8");
+    img.data(sim_->RenderFrame());
+    if (camera_->Publish(img, ctx_->now_ns())) {
+      ctx_->counters.CountOut();
+      frames_++;
+    }
+  }
+
+  runtime::NodeContext* ctx_ = nullptr;
+  std::unique_ptr<HallwaySim> sim_;
+  double sim_period_s_ = 0.02;
+  double wheel_timeout_s_ = 0.5;
+  double left_ftps_ = 0.0, right_ftps_ = 0.0;
+  int64_t last_wheels_ns_ = 0, last_step_ns_ = 0;
+  uint32_t width_px_ = 512, height_px_ = 480;
+  uint64_t frames_ = 0, scans_ = 0;
+  std::unique_ptr<runtime::Writer<msgs::EncoderReadingPubSubType>> encoders_;
+  std::unique_ptr<runtime::Writer<msgs::SonarEchoPubSubType>> sonar_;
+  std::unique_ptr<runtime::Writer<msgs::ImagePubSubType>> camera_;
+  std::unique_ptr<runtime::Writer<msgs::GroundTruthPubSubType>> truth_;
+  std::unique_ptr<runtime::Reader<msgs::WheelCommandPubSubType>> wheels_;
+};
+
+}  // namespace
+
+std::unique_ptr<runtime::ProcessNode> MakeVirtualRobotNode() {
+  return std::make_unique<VirtualRobotNode>();
+}
+
+}  // namespace stickrep::virtual_robot
