@@ -1,6 +1,5 @@
 // stickrep-map: validate, census, ambiguity analysis, render and generate StickRep maps.
 #include <CLI/CLI.hpp>
-
 #include <iostream>
 
 #include "common/input_error.h"
@@ -8,8 +7,9 @@
 
 int main(int argc, char** argv) {
   namespace tool = stickrep::map::tool;
-  CLI::App app{"StickRep map tool: validate, census (Tables 6.1-6.9), ambiguity (Figure 6.1), "
-               "render and generate maps"};
+  CLI::App app{
+      "StickRep map tool: validate, census (Tables 6.1-6.9), ambiguity (Figure 6.1), "
+      "render and generate maps"};
   app.require_subcommand(1);
 
   std::vector<std::string> paths;
@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
   ambiguity->add_option("MAP", map_path, "Map file")->required();
   ambiguity->add_flag("--json", amb.json, "JSON output");
   ambiguity->add_option("--png", amb.png, "Write a histogram PNG");
-  ambiguity->add_option("--worst", amb.worst, "How many worst starts to list")->check(CLI::Range(0, 100000));
+  ambiguity->add_option("--worst", amb.worst, "How many worst starts to list")
+      ->check(CLI::Range(0, 100000));
   bool whole_first_edge = false;
   ambiguity->add_flag("--whole-first-edge", whole_first_edge,
                       "Sense the first edge whole (default: a first wall's length is unknown)");
@@ -49,8 +50,10 @@ int main(int argc, char** argv) {
   std::string domain, out_path;
   std::uint64_t seed = 0;
   auto* generate = app.add_subcommand("generate", "Generate one of the five domains of §6.8");
-  generate->add_option("DOMAIN", domain, "engineering_building_3f, wells_hall_7f, "
-                                         "wells_hall_7f_modified, regular_polygon_46, storefront")
+  generate
+      ->add_option("DOMAIN", domain,
+                   "engineering_building_3f, wells_hall_7f, "
+                   "wells_hall_7f_modified, regular_polygon_46, storefront")
       ->required();
   auto* seed_opt = generate->add_option("--seed", seed, "Seed (default: the committed map's)");
   generate->add_option("--out", out_path, "Output map file")->required();

@@ -47,9 +47,9 @@ struct AmbiguityResult {
   int ring_end = 0;
   int never_unique = 0;
   // Over the starts that became unique:
-  double mean_edges = 0;             // each start counted once (Figure 6.1)
+  double mean_edges = 0;                  // each start counted once (Figure 6.1)
   double length_weighted_mean_edges = 0;  // starts weighted by their first edge's length
-  double mean_distance_in = 0;       // summed metric of the sensed edges
+  double mean_distance_in = 0;            // summed metric of the sensed edges
   int max_edges = 0;
   double mean_edge_metric_in = 0;  // of the map, for the paper's distance = edges * mean
 };

@@ -1,9 +1,9 @@
 #include "stickrep/ambiguity_report.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "plot/bar_chart.h"
 #include "stickrep/paper_reference.h"
@@ -63,9 +63,10 @@ std::string FormatAmbiguityText(const Map& map, const AmbiguityOptions& options,
   out += fmt::format("Starting-location ambiguity of {} (Figure 6.1), no sensing error\n",
                      map.info().name);
   out += fmt::format("  semantics: {}\n", Semantics(options));
-  out += fmt::format("  starts: {} ({} edges x 2 directions): unique {}, ring end first {}, "
-                     "never unique {}\n",
-                     r.starts.size(), r.starts.size() / 2, r.unique, r.ring_end, r.never_unique);
+  out += fmt::format(
+      "  starts: {} ({} edges x 2 directions): unique {}, ring end first {}, "
+      "never unique {}\n",
+      r.starts.size(), r.starts.size() / 2, r.unique, r.ring_end, r.never_unique);
   const double ft = r.mean_edges * r.mean_edge_metric_in / 12.0;
   out += fmt::format(
       "  edges to a unique pose: mean {:.2f} (per start), {:.2f} (starts weighted by the "
@@ -88,7 +89,8 @@ std::string FormatAmbiguityText(const Map& map, const AmbiguityOptions& options,
   int biggest = 1;
   for (const auto& [k, n] : dist) biggest = std::max(biggest, n);
   for (const auto& [k, n] : dist) {
-    out += fmt::format("  {:>5}: {:>5} {}\n", k, n, std::string((n * 50 + biggest - 1) / biggest, '#'));
+    out += fmt::format("  {:>5}: {:>5} {}\n", k, n,
+                       std::string((n * 50 + biggest - 1) / biggest, '#'));
   }
   out += fmt::format("\n  worst starts (ring, edge, direction)\n");
   for (const StartResult* s : Worst(r, report.worst)) {
@@ -141,18 +143,17 @@ nlohmann::json AmbiguityJson(const Map& map, const AmbiguityOptions& options,
   return j;
 }
 
-void WriteAmbiguityHistogramPng(const Map& map, const AmbiguityResult& r,
-                                const std::string& path) {
+void WriteAmbiguityHistogramPng(const Map& map, const AmbiguityResult& r, const std::string& path) {
   std::vector<int> samples;
   for (const StartResult& s : r.starts) {
     if (s.outcome == StartOutcome::kUnique) samples.push_back(s.edges);
   }
   const int hi = std::max(2, r.max_edges);
-  const plot::BarChart chart = plot::IntegerHistogramOf(
-      samples, 1, hi,
-      fmt::format("{}: edges to a unique pose, no error (mean {:.2f})", map.info().name,
-                  r.mean_edges),
-      "edges sensed", "starts");
+  const plot::BarChart chart =
+      plot::IntegerHistogramOf(samples, 1, hi,
+                               fmt::format("{}: edges to a unique pose, no error (mean {:.2f})",
+                                           map.info().name, r.mean_edges),
+                               "edges sensed", "starts");
   plot::WriteBarChartPng(chart, path);
 }
 

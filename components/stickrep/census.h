@@ -18,12 +18,13 @@ enum CensusClass { kCensusDoor30 = 0, kCensusDoor32, kCensusDoor36, kCensusDoor4
 struct Census {
   // Tables 6.1–6.3: [angle 90/180/270][first][second].
   std::array<std::array<std::array<int, 5>, 5>, 3> pairs{};
-  std::array<std::array<int, 4>, 4> door_wall_door{};        // Table 6.4
-  std::array<int, 4> wall_door_wall{};                        // Table 6.5
-  std::array<std::array<int, 4>, 4> door_wall_door_wall{};   // Table 6.6
-  std::array<std::array<int, 4>, 4> wall_door_wall_door{};   // Table 6.7 (180°, see paper_reference.h)
-  std::array<std::array<int, 6>, 4> door_census{};            // Table 6.8 (blank = all doors)
-  std::array<int, 11> wall_census{};                          // Table 6.9
+  std::array<std::array<int, 4>, 4> door_wall_door{};       // Table 6.4
+  std::array<int, 4> wall_door_wall{};                      // Table 6.5
+  std::array<std::array<int, 4>, 4> door_wall_door_wall{};  // Table 6.6
+  std::array<std::array<int, 4>, 4>
+      wall_door_wall_door{};                        // Table 6.7 (180°, see paper_reference.h)
+  std::array<std::array<int, 6>, 4> door_census{};  // Table 6.8 (blank = all doors)
+  std::array<int, 11> wall_census{};                // Table 6.9
 
   int rings = 0;
   int closed_rings = 0;
@@ -35,9 +36,9 @@ struct Census {
   int other_edges = 0;  // elevators, stairwells, corners, patterns: in no table
   std::array<int, kDoorClassCount> doors_by_class{};  // map edges
   int door_leaves = 0;
-  int pairs_counted = 0;        // in Tables 6.1–6.3
-  int pairs_other = 0;          // at non-artificial nodes but with another edge type or angle
-  int pairs_artificial = 0;     // across artificial nodes, not counted
+  int pairs_counted = 0;     // in Tables 6.1–6.3
+  int pairs_other = 0;       // at non-artificial nodes but with another edge type or angle
+  int pairs_artificial = 0;  // across artificial nodes, not counted
   double total_metric_in = 0;
   double mean_edge_metric_in = 0;  // per map edge
   double mean_leaf_metric_in = 0;  // per leaf edge (the text's 67.64 in basis)

@@ -1,8 +1,8 @@
 #include "stickrep/census_report.h"
 
-#include <cstdlib>
-
 #include <fmt/format.h>
+
+#include <cstdlib>
 
 #include "stickrep/paper_reference.h"
 
@@ -97,9 +97,9 @@ std::string FormatCensusText(const Map& map, const Census& c, bool compare) {
       "{:.2f} in per map edge\n\n",
       c.rings, c.closed_rings, c.joins, c.artificial_nodes, c.edges, c.leaf_edges, c.walls,
       c.other_edges, c.doors_by_class[0], c.doors_by_class[1], c.doors_by_class[2],
-      c.doors_by_class[3], c.doors_by_class[4], c.doors_by_class[5], c.door_leaves,
-      c.pairs_counted, c.pairs_artificial, c.pairs_other, c.total_metric_in,
-      c.total_metric_in / 12.0, c.mean_leaf_metric_in,
+      c.doors_by_class[3], c.doors_by_class[4], c.doors_by_class[5], c.door_leaves, c.pairs_counted,
+      c.pairs_artificial, c.pairs_other, c.total_metric_in, c.total_metric_in / 12.0,
+      c.mean_leaf_metric_in,
       compare ? fmt::format(" ({:.2f})", paper::kEngineeringMeanEdgeMetricIn) : std::string(),
       c.mean_edge_metric_in);
   const char* titles[3] = {"Table 6.1  adjacent pairs, angle 90 deg (row first, column second)",
@@ -131,7 +131,8 @@ std::string FormatCensusText(const Map& map, const Census& c, bool compare) {
   }
   out += "\nTable 6.9  wall census (walls longer than / at least)\n  ";
   for (std::size_t t = 0; t < paper::kWallThresholdsIn.size(); ++t) {
-    out += fmt::format("{:>11}", (t == 0 ? ">" : ">=") + fmt::format("{:.0f}", paper::kWallThresholdsIn[t]));
+    out += fmt::format("{:>11}",
+                       (t == 0 ? ">" : ">=") + fmt::format("{:.0f}", paper::kWallThresholdsIn[t]));
   }
   out += "\n  ";
   for (std::size_t t = 0; t < paper::kWallThresholdsIn.size(); ++t) {

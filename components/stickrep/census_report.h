@@ -3,10 +3,9 @@
 // The census of a map printed in the layout of Tables 6.1–6.9, side by side with the
 // dissertation's numbers when asked (the Engineering Building), and as JSON.
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "stickrep/census.h"
 
@@ -17,7 +16,7 @@ struct TableDeviation {
   std::string table;  // "Table 6.2"
   int cells = 0;
   int cells_differing = 0;
-  int abs_sum = 0;   // sum over cells of |ours - paper|
+  int abs_sum = 0;  // sum over cells of |ours - paper|
   int ours_total = 0;
   int paper_total = 0;
 };

@@ -33,11 +33,11 @@ TEST(CensusTest, WallCensusUsesTheThresholdsOfTable69) {
   const Census c = ComputeCensus(ParseMap(testing::kBoxMapYaml, "box.yaml"));
   // Walls: 40, 24, 100, 100, 100, 50.
   EXPECT_EQ(c.walls, 6);
-  EXPECT_EQ(c.wall_census[0], 6);   // > 0
-  EXPECT_EQ(c.wall_census[3], 5);   // >= 32
-  EXPECT_EQ(c.wall_census[4], 4);   // >= 48
-  EXPECT_EQ(c.wall_census[7], 3);   // >= 96
-  EXPECT_EQ(c.wall_census[8], 0);   // >= 112
+  EXPECT_EQ(c.wall_census[0], 6);  // > 0
+  EXPECT_EQ(c.wall_census[3], 5);  // >= 32
+  EXPECT_EQ(c.wall_census[4], 4);  // >= 48
+  EXPECT_EQ(c.wall_census[7], 3);  // >= 96
+  EXPECT_EQ(c.wall_census[8], 0);  // >= 112
 }
 
 TEST(CensusTest, DoubleDoorCountsAsTwoLeavesWithACoplanarPair) {

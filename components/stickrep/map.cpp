@@ -105,8 +105,8 @@ Map::Map(MapInfo info, std::vector<Ring> rings, std::vector<Join> joins)
     const std::size_t want = ring.edges.size() + (ring.closed ? 0 : 1);
     if (ring.nodes.size() != want) {
       Invalid(where + " has " + std::to_string(ring.nodes.size()) + " nodes; a " +
-              (ring.closed ? "closed" : "open") + " ring of " +
-              std::to_string(ring.edges.size()) + " edges needs " + std::to_string(want));
+              (ring.closed ? "closed" : "open") + " ring of " + std::to_string(ring.edges.size()) +
+              " edges needs " + std::to_string(want));
     }
     for (const Edge& e : ring.edges) {
       if (!(e.metric_in > 0.0) || !std::isfinite(e.metric_in)) {
@@ -138,8 +138,7 @@ Map::Map(MapInfo info, std::vector<Ring> rings, std::vector<Join> joins)
       Invalid("a join names node " + std::to_string(j.node) + " of ring '" + j.ring + "'");
     }
     if (j.to_node < 0 || j.to_node >= rings_[b].NodeCount()) {
-      Invalid("a join names node " + std::to_string(j.to_node) + " of ring '" + j.to_ring +
-              "'");
+      Invalid("a join names node " + std::to_string(j.to_node) + " of ring '" + j.to_ring + "'");
     }
     if (!rings_[a].nodes[j.node].artificial) {
       Invalid("ring '" + j.ring + "' is joined at node " + std::to_string(j.node) +

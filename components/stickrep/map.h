@@ -66,7 +66,7 @@ struct Node {
   double z_in = 0.0;
   double alpha_deg = 0.0;
   double beta_deg = 0.0;
-  double gamma_deg = 0.0;  // heading of the wall leaving this node, in ring order
+  double gamma_deg = 0.0;   // heading of the wall leaving this node, in ring order
   bool artificial = false;  // the node where this ring is joined to another ring (§3.3)
 };
 

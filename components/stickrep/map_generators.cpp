@@ -26,15 +26,17 @@ class Rng {
   // Uniform integer in [0, n).
   std::uint64_t Below(std::uint64_t n) {
     assert(n > 0);
-    const std::uint64_t limit = std::numeric_limits<std::uint64_t>::max() -
-                                std::numeric_limits<std::uint64_t>::max() % n;
+    const std::uint64_t limit =
+        std::numeric_limits<std::uint64_t>::max() - std::numeric_limits<std::uint64_t>::max() % n;
     std::uint64_t v;
     do {
       v = gen_();
     } while (v >= limit);
     return v % n;
   }
-  int Int(int lo, int hi) { return lo + static_cast<int>(Below(static_cast<std::uint64_t>(hi - lo + 1))); }
+  int Int(int lo, int hi) {
+    return lo + static_cast<int>(Below(static_cast<std::uint64_t>(hi - lo + 1)));
+  }
   double Uniform() { return static_cast<double>(gen_() >> 11) * (1.0 / 9007199254740992.0); }
   template <typename T>
   void Shuffle(std::vector<T>& v) {
@@ -165,10 +167,10 @@ struct PRing {
   int wing = 0;
   std::vector<Edge> doors;
   std::vector<Event> events;
-  int art_corner = -1;        // main corner flagged artificial, or -1
-  int art_door = -1;          // door whose preceding node is artificial, or -1
-  int recessed_door = -1;     // door set back in a recess (270° both sides)
-  int alcove_door = -1;       // door at the back of an alcove (270° before it)
+  int art_corner = -1;     // main corner flagged artificial, or -1
+  int art_door = -1;       // door whose preceding node is artificial, or -1
+  int recessed_door = -1;  // door set back in a recess (270° both sides)
+  int alcove_door = -1;    // door at the back of an alcove (270° before it)
   std::vector<PItem> items;
   std::array<int, 4> absorber{{-1, -1, -1, -1}};  // a long base slot per side
 };
@@ -405,8 +407,8 @@ class EngineeringBuilder {
       int row = next_row_++;
       for (int gap = 0; gap <= doors_here; ++gap) {
         emit_wall(SlotRole::kBase);
-        const bool has_events = ev < ring.events.size() && ring.events[ev].side == side &&
-                                ring.events[ev].gap == gap;
+        const bool has_events =
+            ev < ring.events.size() && ring.events[ev].side == side && ring.events[ev].gap == gap;
         if (gap > 0 && gap < doors_here && !has_events) {
           slots_.back().row = row;
         } else {
@@ -799,11 +801,11 @@ Map GenerateWellsHall(std::uint64_t seed, bool modified) {
   const std::array<DoorClass, 4> odd_door = {DoorClass::k32, DoorClass::k40, DoorClass::k30_30,
                                              DoorClass::k32};
   for (int side = 0; side < 4; ++side) {
-    const int modules =
-        static_cast<int>((core_sides[side] - 2 * 48.0) / (36.0 + core_module_wall));
+    const int modules = static_cast<int>((core_sides[side] - 2 * 48.0) / (36.0 + core_module_wall));
     const int odd_at = rng.Int(0, modules - 1);
     std::vector<DoorClass> doors;
-    for (int m = 0; m < modules; ++m) doors.push_back(m == odd_at ? odd_door[side] : DoorClass::k36);
+    for (int m = 0; m < modules; ++m)
+      doors.push_back(m == odd_at ? odd_door[side] : DoorClass::k36);
     double used = 0;
     for (DoorClass d : doors) used += DoorClassWidthIn(d);
     used += core_module_wall * (modules - 1);
@@ -867,7 +869,8 @@ Map GenerateWellsHall(std::uint64_t seed, bool modified) {
   rings.push_back(BuildRing("corridor_outer", true, major, 0.0, 0.0, 0.0));
   rings.back().nodes[0].artificial = true;
   rings.push_back(BuildRing("core", true, core, hall, outer_h - hall, 0.0));
-  std::vector<Join> joins = {{"core", 0, "corridor_outer", NearestNode(rings[0], rings[1].nodes[0])}};
+  std::vector<Join> joins = {
+      {"core", 0, "corridor_outer", NearestNode(rings[0], rings[1].nodes[0])}};
   MapInfo info;
   info.name = modified ? "wells_hall_7f_modified" : "wells_hall_7f";
   info.description =

@@ -83,8 +83,8 @@ Edge ReadEdge(const StrictYaml& y) {
     const std::string cls = y.Get<std::string>("class");
     const auto door_class = ParseDoorClass(cls);
     if (!door_class) {
-      y.Fail("class", "door class '" + cls + "' is not a legal door width (" + DoorClassList() +
-                          " in)");
+      y.Fail("class",
+             "door class '" + cls + "' is not a legal door width (" + DoorClassList() + " in)");
     }
     e.door_class = *door_class;
     e.metric_in = DoorClassWidthIn(*door_class);
@@ -112,8 +112,8 @@ Edge ReadEdge(const StrictYaml& y) {
     }
     if ((e.type == EdgeType::kDoorway && *prototype != Prototype::kDoorjam) ||
         (e.type == EdgeType::kHallway && *prototype != Prototype::kWallsegment)) {
-      y.Fail("prototype", std::string("a ") + EdgeTypeName(e.type) + " edge cannot have prototype " +
-                              p);
+      y.Fail("prototype",
+             std::string("a ") + EdgeTypeName(e.type) + " edge cannot have prototype " + p);
     }
     e.prototype = *prototype;
   }
@@ -170,8 +170,9 @@ Ring ReadRing(const StrictYaml& y, std::vector<int>* node_lines) {
   }
   if (ring.edges.empty()) path.Fail("", "a ring needs at least one edge");
   if (ring.closed && expect_node == false) {
-    path.Fail("", "a closed ring ends with an edge (node 0 closes it); this one ends with a node."
-                  " Set closed: false for an open ring");
+    path.Fail("",
+              "a closed ring ends with an edge (node 0 closes it); this one ends with a node."
+              " Set closed: false for an open ring");
   }
   if (!ring.closed && expect_node == true) {
     path.Fail("", "an open ring ends with a node (its far end); this one ends with an edge");
@@ -352,7 +353,8 @@ std::string WriteMapYaml(const Map& map) {
       } else {
         out << ", metric_in: " << FormatNumber(e.metric_in);
       }
-      if (e.prototype != DefaultPrototype(e.type)) out << ", prototype: " << PrototypeName(e.prototype);
+      if (e.prototype != DefaultPrototype(e.type))
+        out << ", prototype: " << PrototypeName(e.prototype);
       if (!e.pattern.empty()) out << ", pattern: " << e.pattern;
       out << "}\n";
     }

@@ -139,8 +139,8 @@ TEST(MapIoTest, UnknownKeyIsRejected) {
 }
 
 TEST(MapIoTest, AngleOutOfRangeIsRejected) {
-  const InputError e = ParseError(Edited("angle_deg: 90, xyz_in: [100, 0, 0]",
-                                         "angle_deg: 400, xyz_in: [100, 0, 0]"));
+  const InputError e = ParseError(
+      Edited("angle_deg: 90, xyz_in: [100, 0, 0]", "angle_deg: 400, xyz_in: [100, 0, 0]"));
   EXPECT_NE(e.reason().find("outside [0, 360]"), std::string::npos);
 }
 
@@ -161,14 +161,15 @@ TEST(MapIoTest, OpenRingMustEndWithANode) {
 }
 
 TEST(MapIoTest, NodesAndEdgesMustAlternate) {
-  const InputError e = ParseError(Edited(
-      "      - edge: {type: hallway, metric_in: 50}\n",
-      "      - edge: {type: hallway, metric_in: 25}\n      - edge: {type: hallway, metric_in: 25}\n"));
+  const InputError e = ParseError(Edited("      - edge: {type: hallway, metric_in: 50}\n",
+                                         "      - edge: {type: hallway, metric_in: 25}\n      - "
+                                         "edge: {type: hallway, metric_in: 25}\n"));
   EXPECT_NE(e.reason().find("alternate"), std::string::npos);
 }
 
 TEST(MapIoTest, UnknownEdgeTypeIsRejected) {
-  const InputError e = ParseError(Edited("type: hallway, metric_in: 40", "type: window, metric_in: 40"));
+  const InputError e =
+      ParseError(Edited("type: hallway, metric_in: 40", "type: window, metric_in: 40"));
   EXPECT_NE(e.reason().find("unknown edge type"), std::string::npos);
 }
 
@@ -186,8 +187,8 @@ TEST(MapToolTest, ValidateExitsTwoWithFileLineKeyAndReason) {
   const std::string path = WriteTemp("illegal_class.yaml", text);
   std::ostringstream out, err;
   EXPECT_EQ(tool::Validate({path}, out, err), kExitBadInput);
-  const std::string want =
-      path + ":" + std::to_string(LineOf(text, "class: \"34\"")) + ": key 'rings[0].path[3].edge.class'";
+  const std::string want = path + ":" + std::to_string(LineOf(text, "class: \"34\"")) +
+                           ": key 'rings[0].path[3].edge.class'";
   EXPECT_EQ(err.str().rfind(want, 0), 0u) << err.str();
   std::remove(path.c_str());
 }

@@ -3,18 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
-
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 namespace stickrep::map {
 
 namespace {
 
 // BGR colours per door class (30, 32, 36, 40, 30/30, 36/36), chosen to stay apart in print.
-const cv::Scalar kDoorColours[kDoorClassCount] = {
-    {0, 140, 255}, {0, 200, 0}, {200, 60, 0}, {0, 0, 220}, {180, 0, 180}, {120, 120, 0}};
+const cv::Scalar kDoorColours[kDoorClassCount] = {{0, 140, 255}, {0, 200, 0},   {200, 60, 0},
+                                                  {0, 0, 220},   {180, 0, 180}, {120, 120, 0}};
 const cv::Scalar kWallColour(60, 60, 60);
 const cv::Scalar kOtherColour(200, 0, 255);
 const cv::Scalar kJoinColour(150, 150, 150);
@@ -38,8 +37,9 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
   const int height = std::clamp(static_cast<int>(span_y * scale) + 2 * margin + legend, 200, 6000);
   cv::Mat img(height, options.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
   auto px = [&](const Node& n) {
-    return cv::Point(static_cast<int>(std::lround(margin + (n.x_in - min_x) * scale)),
-                     static_cast<int>(std::lround(height - legend - margin - (n.y_in - min_y) * scale)));
+    return cv::Point(
+        static_cast<int>(std::lround(margin + (n.x_in - min_x) * scale)),
+        static_cast<int>(std::lround(height - legend - margin - (n.y_in - min_y) * scale)));
   };
   for (const Join& j : map.joins()) {
     const Ring& a = map.ring(map.FindRing(j.ring));
@@ -80,21 +80,26 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
     x += 140;
   }
   cv::line(img, {x, y}, {x + 30, y}, kWallColour, 1);
-  cv::putText(img, "wall", {x + 36, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  cv::putText(img, "wall", {x + 36, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20),
+              1, cv::LINE_AA);
   x += 100;
   cv::line(img, {x, y}, {x + 30, y}, kOtherColour, 6);
-  cv::putText(img, "other type", {x + 36, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  cv::putText(img, "other type", {x + 36, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+              cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
   x += 130;
   cv::circle(img, {x + 6, y}, 6, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
-  cv::putText(img, "artificial node / join", {x + 18, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  cv::putText(img, "artificial node / join", {x + 18, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+              cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
   x += 230;
   // A scale bar of a round number of feet.
   double bar_ft = 10;
   while (bar_ft * 12 * scale < 80) bar_ft *= 2;
   const int bar_px = static_cast<int>(bar_ft * 12 * scale);
   cv::line(img, {x, y}, {x + bar_px, y}, cv::Scalar(0, 0, 0), 2);
-  cv::putText(img, cv::format("%.0f ft", bar_ft), {x + bar_px + 6, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
-  cv::putText(img, map.info().name, {margin, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.7, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, cv::format("%.0f ft", bar_ft), {x + bar_px + 6, y + 5}, cv::FONT_HERSHEY_SIMPLEX,
+              0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
+  cv::putText(img, map.info().name, {margin, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.7,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   if (!cv::imwrite(path, img)) throw std::runtime_error("cannot write " + path);
 }
 

@@ -11,7 +11,7 @@
 namespace stickrep::map {
 
 struct RenderOptions {
-  int width_px = 1800;     // image width; the height follows the map's aspect ratio
+  int width_px = 1800;  // image width; the height follows the map's aspect ratio
   bool label_rings = true;
 };
 

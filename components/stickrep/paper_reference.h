@@ -46,10 +46,8 @@ inline constexpr std::array<std::string_view, 6> kPatternColumns = {
 // The map's pattern word for each column after the first.
 inline constexpr std::array<std::string_view, 5> kPatternWords = {
     "old_window", "no_window", "new_window", "two_new_windows", "poster"};
-inline constexpr std::array<std::array<int, 6>, 4> kDoorCensus = {{{22, 0, 0, 0, 0, 0},
-                                                                   {4, 0, 0, 0, 0, 0},
-                                                                   {212, 54, 10, 3, 104, 29},
-                                                                   {11, 11, 0, 0, 0, 0}}};
+inline constexpr std::array<std::array<int, 6>, 4> kDoorCensus = {
+    {{22, 0, 0, 0, 0, 0}, {4, 0, 0, 0, 0, 0}, {212, 54, 10, 3, 104, 29}, {11, 11, 0, 0, 0, 0}}};
 
 // Table 6.9: walls longer than 0 and at least each threshold (inches).
 inline constexpr std::array<double, 11> kWallThresholdsIn = {0,  12, 16,  32,  48, 64,

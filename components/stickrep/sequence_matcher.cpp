@@ -24,7 +24,7 @@ SymbolCode CodeOf(const Edge& edge) {
 
 const char* SymbolName(SymbolCode code) {
   static constexpr const char* kNames[kSymbolCodeCount] = {
-      "wall",    "door30",   "door32",    "door36", "door40",  "door30/30",
+      "wall",      "door30",   "door32",    "door36", "door40", "door30/30",
       "door36/36", "elevator", "stairwell", "corner", "pattern"};
   return code < kSymbolCodeCount ? kNames[code] : "?";
 }

@@ -21,7 +21,8 @@ void BM_MatchSequenceFromEveryStart(benchmark::State& state) {
   SequenceMatcher matcher(index);
   const int length = static_cast<int>(state.range(0));
   std::vector<std::vector<SensedEdge>> sequences;
-  for (int g = 0; g < index.EdgeCount(); ++g) sequences.push_back(ExactSequence(index, g, +1, length));
+  for (int g = 0; g < index.EdgeCount(); ++g)
+    sequences.push_back(ExactSequence(index, g, +1, length));
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(matcher.MatchAll(sequences[i]));
