@@ -1,19 +1,95 @@
 #include "landmark/landmark_pipeline.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <numeric>
+#include <utility>
 
 namespace stickrep::landmark {
 
+std::vector<sensing::JambCandidate> CandidatesAfterCasingRule(
+    const vision::RibbonDetection& detection, const CasingRule& rule, int* casings) {
+  const std::vector<vision::Footprint>& fp = detection.footprints;
+  const std::vector<vision::CandidatePair>& pairs = detection.pairs;
+  std::vector<double> confidence(pairs.size());
+  std::vector<bool> withdrawn(pairs.size(), false);
+  std::map<std::pair<int, int>, std::size_t> by_ends;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    confidence[i] = pairs[i].confidence;
+    by_ends[{pairs[i].left_index, pairs[i].right_index}] = i;
+  }
+  int found = 0;
+  if (rule.enabled) {
+    // Outside in: widest pairs first, so a promoted confidence can pass further inward.
+    std::vector<std::size_t> order(pairs.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return pairs[a].width_px > pairs[b].width_px;
+    });
+    auto find = [&](int l, int r) -> long {
+      const auto it = by_ends.find({l, r});
+      return it == by_ends.end() ? -1 : static_cast<long>(it->second);
+    };
+    const int n_fp = static_cast<int>(fp.size());
+    for (std::size_t o : order) {
+      if (withdrawn[o]) continue;
+      const int a = pairs[o].left_index, d = pairs[o].right_index;
+      // The bands are bounded by neighbouring footprints: nothing lies inside a casing.
+      const int b = a + 1, c = d - 1;
+      if (a < 0 || d >= n_fp || b >= c) continue;
+      const int pa = fp[a].polarity, pb = fp[b].polarity, pc = fp[c].polarity, pd = fp[d].polarity;
+      if (pa == 0 || pb == 0 || pa == pb || pc == pd || pa != -pd || pb != -pc) continue;
+      const double left_band = fp[b].column_px - fp[a].column_px;
+      const double right_band = fp[d].column_px - fp[c].column_px;
+      const double opening = fp[c].column_px - fp[b].column_px;
+      if (!(left_band > 0.0 && right_band > 0.0 && opening > 0.0)) continue;
+      if (std::max(left_band, right_band) > rule.max_band_to_opening * opening) continue;
+      if (std::max(left_band, right_band) > rule.max_band_ratio * std::min(left_band, right_band)) {
+        continue;
+      }
+      const long inner = find(b, c);
+      if (inner < 0 || withdrawn[inner]) continue;
+      // Every pair from an outer casing edge to an edge within the frame (the outer pair,
+      // the mixed pairs, the bands, and pairs to a double door's seam) is this landmark
+      // seen wrongly; the opening carries the group's confidence.
+      double best = confidence[inner];
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        if (withdrawn[k] || static_cast<long>(k) == inner) continue;
+        const int l = pairs[k].left_index, r = pairs[k].right_index;
+        if ((l == a && r <= d) || (r == d && l >= a)) {
+          best = std::max(best, confidence[k]);
+          withdrawn[k] = true;
+        }
+      }
+      confidence[inner] = best;
+      ++found;
+    }
+  }
+  if (casings) *casings = found;
+  std::vector<sensing::JambCandidate> out;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (withdrawn[i]) continue;
+    out.push_back({sensing::Footprints{pairs[i].left_px, pairs[i].right_px}, confidence[i]});
+  }
+  return out;
+}
+
 LandmarkPipeline::LandmarkPipeline(const sensing::RobotConfig& robot,
                                    vision::RibbonDetectorParams detector,
-                                   sensing::LandmarkEstimatorConfig estimator)
-    : robot_(robot), detector_(detector), estimator_(robot, std::move(estimator)) {}
+                                   sensing::LandmarkEstimatorConfig estimator, CasingRule casing)
+    : robot_(robot),
+      detector_(detector),
+      estimator_(robot, std::move(estimator)),
+      casing_(casing) {}
 
 FrameOutcome LandmarkPipeline::Process(const vision::ImageView& frame,
                                        const sensing::SonarScan& scan) const {
   FrameOutcome out;
   const int coaxial = robot_.camera.coaxial_sensor;
-  if (coaxial >= static_cast<int>(scan.ranges_in.size()) || !scan.valid[coaxial]) {
+  if (coaxial < 0 || coaxial >= static_cast<int>(scan.ranges_in.size()) ||
+      coaxial >= static_cast<int>(scan.valid.size()) || !scan.valid[coaxial] ||
+      !std::isfinite(scan.ranges_in[coaxial])) {
     out.kind = FrameOutcome::Kind::kNoRange;
     out.reason = "no valid coaxial sonar range";
     return out;
@@ -25,11 +101,9 @@ FrameOutcome LandmarkPipeline::Process(const vision::ImageView& frame,
     out.reason = std::string(vision::ToString(detected.status)) + ": " + detected.message;
     return out;
   }
-  std::vector<sensing::JambCandidate> candidates;
-  for (const vision::CandidatePair& p : detected.detection.pairs) {
-    candidates.push_back({sensing::Footprints{p.left_px, p.right_px}, p.confidence});
-  }
-  out.candidates = static_cast<int>(candidates.size());
+  out.candidates = static_cast<int>(detected.detection.pairs.size());
+  const std::vector<sensing::JambCandidate> candidates =
+      CandidatesAfterCasingRule(detected.detection, casing_, &out.casings);
   const auto estimate = estimator_.Estimate(scan, candidates);
   if (!estimate.ok()) {
     out.kind = FrameOutcome::Kind::kNoDoor;

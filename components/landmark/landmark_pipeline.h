@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "sensing/landmark_estimator.h"
 #include "sensing/robot_config.h"
@@ -17,26 +18,63 @@ struct FrameOutcome {
     kNoRange,      // no usable coaxial sonar range to scale the frame: drop and count
   };
   Kind kind = Kind::kNoDoor;
-  std::string reason;                    // why, for everything but kObservation
+  std::string reason;  // why, for everything but kObservation
   sensing::LandmarkObservation observation;
-  double center_offset_in = 0.0;         // ribbon centre along the wall from the optical axis
-  int candidates = 0;                    // candidate jamb pairs the detector offered
+  double center_offset_in = 0.0;  // ribbon centre along the wall from the optical axis
+  int candidates = 0;             // candidate jamb pairs the detector offered
+  int casings = 0;                // of those, recognised as a casing round an inner pair
+};
+
+// The casing rule: how a door's frame is told apart from the door.
+//
+// A door in a painted frame shows four vertical edges, not two: wall -> casing, casing ->
+// opening, opening -> casing, casing -> wall. The outer pair is often the most confident
+// one (the wall-to-casing contrast is the stronger), and it is the opening plus two casing
+// widths: 36 + 2 x 3 = 42 in, class 40 (and 30 + 6 = 36, class 36; 32 + 6 = 38, class 36).
+// The class of a door is its opening (§4.1.2, the jambs), so the inner pair is the one to
+// measure. The four edges are recognised from the image alone, without assuming a casing
+// width: two footprint pairs nested with nothing between them, where
+//  - each side band is bounded by edges of opposite polarity (a stripe, not a step),
+//  - the two bands are mirror images (outer edges of opposite polarity, likewise the inner
+//    edges: constraint C2 of §5.1, a face that contrasts with its surround on both sides),
+//  - each band is narrow beside the opening and the two are of like width (a frame is the
+//    same on both jambs; perspective may make one up to max_band_ratio wider).
+// The outer pair and the two mixed pairs (outer edge with the far inner edge, e.g. 39 in)
+// are then the same landmark measured wrongly: they are withdrawn and the inner pair takes
+// the group's highest confidence. The rule applies outside in, so a frame within a frame
+// resolves to the innermost opening.
+struct CasingRule {
+  bool enabled = true;
+  // Each band at most this share of the opening's width: a 3 in casing is 4-10 % of a 30-72
+  // in door; 0.25 admits casings up to 7.5 in on a 30 in door and rejects two doors side by
+  // side (their "bands" are whole doors).
+  double max_band_to_opening = 0.25;
+  // Left and right band widths within this ratio: 1 square-on; at the 7.5° limit of the
+  // navigation envelope (§6.4.2) and beyond, the near band looks wider.
+  double max_band_ratio = 2.5;
 };
 
 // The landmark pipeline of §4.1 and Chapter 5 for one frame: the vertical edge ribbon
-// detector (Figure 4.1) on rows chosen from the coaxial sonar range, then the sensing
-// geometry (Short Side by default) and the Bayes door classes of Table 4.1 over the
-// candidate pairs in order of confidence.
+// detector (Figure 4.1) on rows chosen from the coaxial sonar range, the casing rule over
+// its candidate pairs, then the sensing geometry (Short Side by default) and the Bayes door
+// classes of Table 4.1 over the candidate pairs in order of confidence.
 class LandmarkPipeline {
  public:
   LandmarkPipeline(const sensing::RobotConfig& robot, vision::RibbonDetectorParams detector,
-                   sensing::LandmarkEstimatorConfig estimator);
+                   sensing::LandmarkEstimatorConfig estimator, CasingRule casing = {});
   FrameOutcome Process(const vision::ImageView& frame, const sensing::SonarScan& scan) const;
 
  private:
   sensing::RobotConfig robot_;
   vision::RibbonDetector detector_;
   sensing::LandmarkEstimator estimator_;
+  CasingRule casing_;
 };
+
+// The candidates handed to the classifier: the detector's pairs after the casing rule
+// (withdrawn pairs left out), in the detector's order. `casings`, if given, receives the
+// number of casing pairs recognised. Exposed for tests.
+std::vector<sensing::JambCandidate> CandidatesAfterCasingRule(
+    const vision::RibbonDetection& detection, const CasingRule& rule, int* casings = nullptr);
 
 }  // namespace stickrep::landmark
