@@ -1,0 +1,339 @@
+#include "recovery/bayes_localizer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stickrep::recovery {
+
+namespace {
+
+constexpr double kSqrt2Pi = 2.5066282746310002;
+// Lengths are densities per inch; an unexplained metric edge is spread over about this
+// many inches so that the outlier competes with them on the same footing.
+constexpr double kOutlierSpanIn = 120.0;
+// Belief below this (of a normalised total of 1) is dropped: it can only come back through
+// a chain of unexplained edges, each of which costs `outlier`.
+constexpr double kPruneBelow = 1e-15;
+
+bool Coplanar(double angle_deg) { return std::abs(angle_deg - 180.0) < 1.0; }
+
+double ClassWidth(map::SymbolCode code) {
+  return map::DoorClassWidthIn(static_cast<map::DoorClass>(code - 1));
+}
+
+}  // namespace
+
+BayesLocalizer::BayesLocalizer(const map::MatchIndex& index, BayesModel model)
+    : index_(index), model_(std::move(model)) {
+  states_ = 2 * index.EdgeCount();
+  for (int g = 0; g < index.EdgeCount(); ++g) total_length_in_ += index.metric(g);
+  for (auto* v : {&n_, &i1_, &i2_, &c1_, &c2_, &nn_, &ni1_, &ni2_, &nc1_, &nc2_}) {
+    v->assign(states_, 0.0);
+  }
+  for (auto* v : {&lb1_, &lb2_, &nlb1_, &nlb2_}) v->assign(states_, 0);
+}
+
+void BayesLocalizer::Reset() {
+  std::fill(n_.begin(), n_.end(), 0.0);
+  std::fill(i1_.begin(), i1_.end(), 0.0);
+  std::fill(i2_.begin(), i2_.end(), 0.0);
+  status_ = RecoveryStatus::kEmpty;
+  best_ = PoseBelief{};
+  edges_ = 0;
+}
+
+double BayesLocalizer::WallDensity(double measured, double true_len) const {
+  const double sigma = std::max(1.0, model_.noise.WallSigmaIn(std::max(true_len, 0.0)));
+  const double z = (measured - true_len) / sigma;
+  return std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
+}
+
+double BayesLocalizer::AngleFactor(int g, int dir, const map::SensedEdge& e) const {
+  if (std::isnan(e.angle_deg)) return 1.0;
+  const double a = dir > 0 ? index_.angle_start(g) : index_.angle_end(g);
+  return std::abs(a - e.angle_deg) <= model_.settings.angle_tolerance_deg
+             ? 1.0
+             : model_.settings.outlier;
+}
+
+RecoveryStatus BayesLocalizer::Add(const map::SensedEdge& edge) {
+  if (CheckSensedEdge(edge)) {
+    ++rejected_;
+    return status_;
+  }
+  if (states_ == 0) return status_;
+  if (edges_ == 0) {
+    First(edge);
+  } else {
+    Next(edge);
+  }
+  ++edges_;
+  Normalise();
+  return status_;
+}
+
+void BayesLocalizer::First(const map::SensedEdge& e) {
+  const Confusion& cf = model_.confusion;
+  const double eps = model_.settings.outlier;
+  const bool door = map::IsDoorCode(e.code);
+  const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
+  std::fill(i1_.begin(), i1_.end(), 0.0);
+  std::fill(i2_.begin(), i2_.end(), 0.0);
+  for (int g = 0; g < index_.EdgeCount(); ++g) {
+    const double len = index_.metric(g);
+    const map::SymbolCode code = index_.code(g);
+    // Prior: the start is uniform along the walls, so edge g holds it with len / total.
+    const double prior = len / total_length_in_;
+    double pn = 0.0, pi1 = 0.0, pi2 = 0.0;
+    if (door) {
+      if (map::IsDoorCode(code)) {
+        const int k = code - 1, c = e.code - 1;
+        pn = prior * (k == c ? cf.correct : cf.missized * cf.missized_to[k][c]);
+      } else if (code == map::kWallCode && len > ClassWidth(e.code)) {
+        // The robot starts beside a false door in a wall.
+        pi2 = cf.false_door * cf.false_class[e.code - 1] * ClassWidth(e.code) / total_length_in_;
+      }
+    } else if (code == e.code) {
+      const bool wall = code == map::kWallCode;
+      const double clean = wall ? 1.0 - cf.false_door : 1.0;
+      if (e.metric_is_lower_bound) {
+        // The part seen from a uniform start point: density 1/len for any length up to len.
+        const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len));
+        const double over = std::max(0.0, e.metric_in - len) / sigma;
+        const double fit = std::exp(-0.5 * over * over);
+        pn = clean * fit / total_length_in_;
+        // ... or the part up to a false door ahead in the same wall.
+        if (wall) pi1 = cf.false_door * 0.5 * fit / total_length_in_;
+        if (wall) {
+          // ... or it began in an earlier wall or door and ran over missed doors into this
+          // wall (one sensed wall over a flat stretch). Direction-dependent: see below.
+          for (const int dir : {+1, -1}) {
+            double chain = len, p = 1.0;
+            int cur = g;
+            double extra = 0.0;
+            for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
+              const int d = index_.Step(cur, -dir);
+              if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
+              const double a_d = dir > 0 ? index_.angle_end(d) : index_.angle_start(d);
+              if (!Coplanar(a_d)) break;
+              p *= cf.missed;
+              chain += index_.metric(d);
+              // Started inside the missed door itself.
+              if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
+              const int w = index_.Step(d, -dir);
+              if (w < 0 || index_.code(w) != map::kWallCode) break;
+              const double a_w = dir > 0 ? index_.angle_end(w) : index_.angle_start(w);
+              if (!Coplanar(a_w)) break;
+              p *= 1.0 - cf.false_door;
+              chain += index_.metric(w);
+              if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
+              cur = w;
+            }
+            n_[State(g, dir)] = extra;  // added to below
+          }
+        }
+      } else {
+        pn = clean * WallDensity(e.metric_in, len) / index_.EdgeCount();
+      }
+    }
+    const bool chained = !door && code == map::kWallCode && code == e.code &&
+                         e.metric_is_lower_bound;
+    for (const int dir : {+1, -1}) {
+      const int s = State(g, dir);
+      n_[s] = (chained ? n_[s] : 0.0) + pn + eps * unit * prior;
+      i1_[s] = pi1;
+      c1_[s] = e.metric_in;
+      lb1_[s] = 1;
+      i2_[s] = pi2;
+      c2_[s] = door ? e.metric_in : 0.0;
+      lb2_[s] = 1;
+    }
+  }
+}
+
+void BayesLocalizer::Next(const map::SensedEdge& e) {
+  const Confusion& cf = model_.confusion;
+  const double eps = model_.settings.outlier;
+  const bool door = map::IsDoorCode(e.code);
+  const bool wall = e.code == map::kWallCode;
+  const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
+  const double pf = cf.false_door;
+  std::fill(nn_.begin(), nn_.end(), 0.0);
+  std::fill(ni1_.begin(), ni1_.end(), 0.0);
+  std::fill(ni2_.begin(), ni2_.end(), 0.0);
+
+  for (int s = 0; s < states_; ++s) {
+    const int g = s / 2;
+    const int dir = (s & 1) ? -1 : +1;
+    const double pn = n_[s];
+    if (pn > 0.0) {
+      const int n1 = index_.Step(g, dir);
+      if (n1 >= 0) {
+        const int s1 = State(n1, dir);
+        const map::SymbolCode code1 = index_.code(n1);
+        const double angle = AngleFactor(n1, dir, e);
+        nn_[s1] += pn * eps * unit;  // an edge the model does not explain
+        if (wall && code1 == map::kWallCode) {
+          const double len1 = index_.metric(n1);
+          nn_[s1] += pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1);
+          if (e.metric_in <= len1) {
+            // W1 of a wall holding a false door: the ribbon is anywhere in the wall.
+            const double add = pn * angle * pf / len1;
+            if (add > ni1_[s1]) {
+              nc1_[s1] = e.metric_in;
+              nlb1_[s1] = 0;
+            }
+            ni1_[s1] += add;
+          }
+          // One sensed wall over missed doors on a flat wall: wall, door, wall, ...
+          double total = len1, p = (1.0 - pf);
+          int cur = n1;
+          for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
+            const int d = index_.Step(cur, dir);
+            if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
+            const int w = index_.Step(d, dir);
+            if (w < 0 || index_.code(w) != map::kWallCode) break;
+            const double a_in = dir > 0 ? index_.angle_start(d) : index_.angle_end(d);
+            const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
+            if (!Coplanar(a_in) || !Coplanar(a_out)) break;
+            const double before_w = total + index_.metric(d);
+            const double len_w = index_.metric(w);
+            if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
+              // ... ending in the first part of a wall that holds a false door.
+              const int sw = State(w, dir);
+              const double add = pn * angle * p * cf.missed * pf / len_w;
+              if (add > ni1_[sw]) {
+                nc1_[sw] = e.metric_in - before_w;
+                nlb1_[sw] = 0;
+              }
+              ni1_[sw] += add;
+            }
+            total = before_w + len_w;
+            p *= cf.missed * (1.0 - pf);
+            nn_[State(w, dir)] += pn * angle * p * WallDensity(e.metric_in, total);
+            cur = w;
+          }
+        } else if (wall && map::IsDoorCode(code1)) {
+          // A missed door seen as wall surface (at a corner), maybe with the wall after it.
+          const double d = index_.metric(n1);
+          nn_[s1] += pn * angle * cf.missed * WallDensity(e.metric_in, d);
+          const int w = index_.Step(n1, dir);
+          if (w >= 0 && index_.code(w) == map::kWallCode) {
+            const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
+            if (Coplanar(a_out)) {
+              nn_[State(w, dir)] += pn * angle * cf.missed * (1.0 - pf) *
+                                    WallDensity(e.metric_in, d + index_.metric(w));
+            }
+          }
+        } else if (door && map::IsDoorCode(code1)) {
+          const int k = code1 - 1, c = e.code - 1;
+          const double pc = k == c ? cf.correct : cf.missized * cf.missized_to[k][c];
+          nn_[s1] += pn * angle * pc;
+        } else if (!door && !wall && code1 == e.code) {
+          nn_[s1] += pn * angle * WallDensity(e.metric_in, index_.metric(n1));
+        }
+      }
+    }
+    const double p1 = i1_[s];
+    if (p1 > 0.0) {
+      nn_[s] += p1 * eps * unit;
+      if (door) {
+        // The false door that ended W1.
+        const double w = e.metric_in > 0.0 ? e.metric_in : ClassWidth(e.code);
+        const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
+        ni2_[s] += p1 * angle * cf.false_class[e.code - 1];
+        nc2_[s] = c1_[s] + w;
+        nc1_[s] = c1_[s];  // I1 and I2 of one wall never hold mass at the same step
+        nlb2_[s] = lb1_[s];
+      }
+    }
+    const double p2 = i2_[s];
+    if (p2 > 0.0) {
+      nn_[s] += p2 * eps * unit;
+      if (wall) {
+        const double len = index_.metric(g);
+        const double rest = len - c2_[s];
+        const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
+        double density;
+        if (lb2_[s]) {
+          // Only a lower bound of what came before is known: W2 is anywhere up to the rest.
+          const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len));
+          const double over = std::max(0.0, e.metric_in - rest) / sigma;
+          density = std::exp(-0.5 * over * over) / len;
+        } else {
+          // W1 + ribbon + W2 spans the whole wall: its odometry error, two more jambs and
+          // the ribbon's measured width all land on W2.
+          const SensingNoise& nz = model_.noise;
+          const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
+          const double base = nz.WallSigmaIn(len);
+          const double sigma = std::max(
+              1.0, std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
+          const double z = (e.metric_in - rest) / sigma;
+          density = std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
+        }
+        nn_[s] += p2 * angle * density;
+      }
+    }
+  }
+  n_.swap(nn_);
+  i1_.swap(ni1_);
+  i2_.swap(ni2_);
+  c1_.swap(nc1_);
+  c2_.swap(nc2_);
+  lb1_.swap(nlb1_);
+  lb2_.swap(nlb2_);
+}
+
+void BayesLocalizer::Normalise() {
+  double sum = 0.0;
+  for (int s = 0; s < states_; ++s) sum += n_[s] + i1_[s] + i2_[s];
+  if (!(sum > 0.0) || !std::isfinite(sum)) {
+    // Nothing explains the sequence any more (e.g. an open ring ended under every
+    // hypothesis): start again from this edge's prior.
+    std::fill(n_.begin(), n_.end(), 1.0 / states_);
+    std::fill(i1_.begin(), i1_.end(), 0.0);
+    std::fill(i2_.begin(), i2_.end(), 0.0);
+    sum = 1.0;
+  }
+  const double inv = 1.0 / sum;
+  best_ = PoseBelief{};
+  for (int s = 0; s < states_; ++s) {
+    double& a = n_[s];
+    double& b = i1_[s];
+    double& c = i2_[s];
+    a *= inv;
+    b *= inv;
+    c *= inv;
+    if (a < kPruneBelow) a = 0.0;
+    if (b < kPruneBelow) b = 0.0;
+    if (c < kPruneBelow) c = 0.0;
+    const double p = a + b + c;
+    if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
+  }
+  status_ = best_.probability >= model_.settings.threshold ? RecoveryStatus::kLocalized
+                                                           : RecoveryStatus::kAmbiguous;
+}
+
+std::vector<PoseBelief> BayesLocalizer::Top(int k) const {
+  std::vector<PoseBelief> all;
+  if (edges_ == 0) return all;
+  for (int s = 0; s < states_; ++s) {
+    const double p = n_[s] + i1_[s] + i2_[s];
+    if (p > 0.0) all.push_back({s / 2, (s & 1) ? -1 : +1, p});
+  }
+  const std::size_t n = std::min<std::size_t>(all.size(), std::max(k, 0));
+  std::partial_sort(all.begin(), all.begin() + n, all.end(),
+                    [](const PoseBelief& a, const PoseBelief& b) {
+                      return a.probability > b.probability;
+                    });
+  all.resize(n);
+  return all;
+}
+
+double BayesLocalizer::PoseProbability(int edge, int dir) const {
+  if (edges_ == 0 || edge < 0 || edge >= index_.EdgeCount()) return 0.0;
+  const int s = State(edge, dir);
+  return n_[s] + i1_[s] + i2_[s];
+}
+
+}  // namespace stickrep::recovery

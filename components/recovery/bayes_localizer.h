@@ -1,0 +1,93 @@
+#pragma once
+
+// The probabilistic matcher (SPEC §5): a discrete Bayes filter over where the robot is on
+// the map — (map edge, direction of travel) — that explains the sensed sequence with the
+// error model instead of throwing it away when it stops matching exactly.
+//
+// It is a pair-HMM between the sensed sequence and the map (a profile alignment): the
+// hidden state after each sensed edge is the map edge in which that sensed edge ended, in
+// one of three phases:
+//   N(g)   at the far end of map edge g (the sensed edge ended at a real node or jamb)
+//   I1(g)  inside wall g, just before a false door: the sensed wall was the first part W1
+//   I2(g)  inside wall g, just after a false door
+// From N(g) the next sensed edge is explained by the map edges ahead:
+//   wall of length m   the next wall (no false door in it), Gaussian odometry error; or
+//                      that wall, a missed door and the wall after it, as one merged wall
+//                      (up to max_missed_doors doors); or the first part W1 of a wall that
+//                      holds a false door (-> I1, uniform over the wall)
+//   door of class c    the next door of class k with P(c | k): Table 6.10's correct or
+//                      mis-sized rates and the mis-sized class distribution
+//   anything           with a small outlier probability, whatever the next edge is
+// From I1 a door is the false door (its class from the false-door distribution) -> I2; from
+// I2 a wall is the rest of the wall, W2 = L - W1 - door width. Adjacency angles, when
+// sensed, must agree with the map node. The first sensed edge is weighed by a prior uniform
+// along the walls (a wall start is the part seen from the start point: any wall at least
+// that long). After each edge the belief is normalised; a pose is reported when the best
+// (edge, direction) holds at least `threshold` of the posterior.
+
+#include <cstdint>
+#include <vector>
+
+#include "recovery/error_model.h"
+#include "recovery/pose_recovery.h"
+#include "stickrep/sequence_matcher.h"
+
+namespace stickrep::recovery {
+
+// The observation model: the confusion of the landmark pipeline and the metric noise.
+struct BayesModel {
+  Confusion confusion;
+  SensingNoise noise;
+  BayesSettings settings;
+};
+
+struct PoseBelief {
+  int edge = -1;  // global map edge (MatchIndex numbering); -1 before any edge
+  int dir = +1;
+  double probability = 0.0;
+};
+
+class BayesLocalizer {
+ public:
+  BayesLocalizer(const map::MatchIndex& index, BayesModel model);
+
+  // Incorporates the next sensed edge. Invalid edges (CheckSensedEdge) are counted and
+  // ignored. Returns kEmpty before the first edge, then kLocalized or kAmbiguous (never
+  // kFailed: an unexplained edge costs probability, it does not end the attempt).
+  RecoveryStatus Add(const map::SensedEdge& edge);
+  void Reset();
+
+  RecoveryStatus status() const { return status_; }
+  // The most probable (edge, direction) and its posterior.
+  const PoseBelief& best() const { return best_; }
+  // The k most probable poses, best first.
+  std::vector<PoseBelief> Top(int k) const;
+  double PoseProbability(int edge, int dir) const;
+  int edges() const { return edges_; }
+  std::uint64_t rejected() const { return rejected_; }
+  const BayesModel& model() const { return model_; }
+
+ private:
+  static int State(int g, int dir) { return 2 * g + (dir > 0 ? 0 : 1); }
+  double AngleFactor(int g, int dir, const map::SensedEdge& e) const;
+  double WallDensity(double measured, double true_len) const;
+  void First(const map::SensedEdge& e);
+  void Next(const map::SensedEdge& e);
+  void Normalise();
+
+  const map::MatchIndex& index_;
+  BayesModel model_;
+  int states_ = 0;
+  double total_length_in_ = 0.0;
+  std::vector<double> n_, i1_, i2_;        // belief per phase and state
+  std::vector<double> c1_, c2_;            // consumed length of the wall in I1 / I2
+  std::vector<std::uint8_t> lb1_, lb2_;    // consumed length is only a lower bound
+  std::vector<double> nn_, ni1_, ni2_, nc1_, nc2_;  // scratch for the next step
+  std::vector<std::uint8_t> nlb1_, nlb2_;
+  RecoveryStatus status_ = RecoveryStatus::kEmpty;
+  PoseBelief best_;
+  int edges_ = 0;
+  std::uint64_t rejected_ = 0;
+};
+
+}  // namespace stickrep::recovery

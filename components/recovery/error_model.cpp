@@ -1,0 +1,351 @@
+#include "recovery/error_model.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/strict_yaml.h"
+
+namespace stickrep::recovery {
+
+namespace {
+
+using map::DoorClass;
+
+constexpr double kSumTolerance = 1e-3;
+
+std::string Num(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+void RequireProbability(double p, const std::string& what) {
+  if (!(p >= 0.0 && p <= 1.0)) {
+    throw std::invalid_argument(what + " = " + Num(p) + " is outside [0, 1]");
+  }
+}
+
+DoorClass ClassKey(const StrictYaml& node, const std::string& key) {
+  const auto c = map::ParseDoorClass(key);
+  if (!c) {
+    node.Fail(key,
+              "unknown door class '" + key + "' (legal: \"30\", \"32\", \"36\", \"40\", "
+              "\"30/30\", \"36/36\")");
+  }
+  return *c;
+}
+
+// Reads {class: probability, ...}; checks each value and that they sum to 1.
+std::map<DoorClass, double> ReadDistribution(const StrictYaml& node) {
+  std::map<DoorClass, double> out;
+  if (!node.IsMap()) node.Fail("", "expected a mapping of door class to probability");
+  double sum = 0;
+  for (const std::string& key : node.Keys()) {
+    const DoorClass c = ClassKey(node, key);
+    const double p = node.Get<double>(key, 0.0, 1.0);
+    out[c] = p;
+    sum += p;
+  }
+  if (!out.empty() && std::abs(sum - 1.0) > kSumTolerance) {
+    node.Fail("", "probabilities sum to " + Num(sum) + ", not 1");
+  }
+  node.Finish();
+  return out;
+}
+
+}  // namespace
+
+ErrorModel ErrorModel::None() {
+  ErrorModel m;
+  m.source = "no sensing error";
+  m.door_correct = 1.0;
+  m.door_missized = 0.0;
+  m.door_missed = 0.0;
+  m.wall_false_door = 0.0;
+  return m;
+}
+
+void ErrorModel::Validate() const {
+  RequireProbability(door_correct, "door_correct");
+  RequireProbability(door_missized, "door_missized");
+  RequireProbability(door_missed, "door_missed");
+  RequireProbability(wall_false_door, "wall_false_door");
+  const double sum = door_correct + door_missized + door_missed;
+  if (std::abs(sum - 1.0) > kSumTolerance) {
+    throw std::invalid_argument("door_correct + door_missized + door_missed = " + Num(sum) +
+                                ", must be 1 within " + Num(kSumTolerance));
+  }
+  for (const auto& [from, row] : missized_to) {
+    double s = 0;
+    for (const auto& [to, p] : row) {
+      RequireProbability(p, std::string("missized_to.") + map::DoorClassName(from));
+      if (to == from) {
+        throw std::invalid_argument(std::string("missized_to.") + map::DoorClassName(from) +
+                                    " sends a door to its own class");
+      }
+      s += p;
+    }
+    if (!row.empty() && std::abs(s - 1.0) > kSumTolerance) {
+      throw std::invalid_argument(std::string("missized_to.") + map::DoorClassName(from) +
+                                  " sums to " + Num(s) + ", not 1");
+    }
+  }
+  double s = 0;
+  for (const auto& [c, p] : false_door_classes) {
+    RequireProbability(p, "false_door_classes");
+    s += p;
+  }
+  if (!false_door_classes.empty() && std::abs(s - 1.0) > kSumTolerance) {
+    throw std::invalid_argument("false_door_classes sums to " + Num(s) + ", not 1");
+  }
+}
+
+static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
+  const StrictYaml node = root.Child("error_model");
+  ErrorModel m;
+  m.source = node.Get<std::string>("source");
+  m.door_correct = node.Get<double>("door_correct", 0.0, 1.0);
+  m.door_missized = node.Get<double>("door_missized", 0.0, 1.0);
+  m.door_missed = node.Get<double>("door_missed", 0.0, 1.0);
+  m.wall_false_door = node.Get<double>("wall_false_door", 0.0, 1.0);
+  const double sum = m.door_correct + m.door_missized + m.door_missed;
+  if (std::abs(sum - 1.0) > kSumTolerance) {
+    node.Fail("door_missed", "door_correct + door_missized + door_missed = " + Num(sum) +
+                                 ", must be 1 within " + Num(kSumTolerance));
+  }
+  if (node.Has("missized_to")) {
+    const StrictYaml mt = node.Child("missized_to");
+    if (!mt.IsMap()) node.Fail("missized_to", "expected a mapping of door class to mapping");
+    for (const std::string& key : mt.Keys()) {
+      const DoorClass from = ClassKey(mt, key);
+      const StrictYaml row = mt.Child(key);
+      m.missized_to[from] = ReadDistribution(row);
+      if (m.missized_to[from].count(from)) {
+        mt.Fail(key, "a mis-sized door cannot be sensed with its own class");
+      }
+    }
+    mt.Finish();
+  }
+  if (node.Has("false_door_classes")) {
+    m.false_door_classes = ReadDistribution(node.Child("false_door_classes"));
+  }
+  node.Finish();
+  root.Finish();
+  return m;
+}
+
+ErrorModel LoadErrorModel(const std::string& path) {
+  return ErrorModelFromYaml(StrictYaml::LoadFile(path));
+}
+
+ErrorModel ParseErrorModel(const std::string& text, const std::string& name) {
+  return ErrorModelFromYaml(StrictYaml::LoadString(text, name));
+}
+
+std::vector<DoorClass> DefaultMissizedTargets(DoorClass c) {
+  switch (c) {
+    case DoorClass::k30:
+      return {DoorClass::k32};
+    case DoorClass::k32:
+      return {DoorClass::k30, DoorClass::k36};
+    case DoorClass::k36:
+      return {DoorClass::k32, DoorClass::k40};
+    case DoorClass::k40:
+      return {DoorClass::k36};
+    case DoorClass::k30_30:
+      return {DoorClass::k36_36};
+    case DoorClass::k36_36:
+      return {DoorClass::k30_30};
+  }
+  return {};
+}
+
+Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
+  Confusion c;
+  c.correct = model.door_correct;
+  c.missized = model.door_missized;
+  c.missed = model.door_missed;
+  c.false_door = model.wall_false_door;
+  double doors = 0;
+  for (int k = 0; k < kDoorClasses; ++k) {
+    c.map_prior[k] = static_cast<double>(
+        index.EdgesWithCode(map::DoorCode(static_cast<DoorClass>(k))).size());
+    doors += c.map_prior[k];
+  }
+  for (double& p : c.map_prior) p = doors > 0 ? p / doors : 0.0;
+  for (int k = 0; k < kDoorClasses; ++k) {
+    const auto from = static_cast<DoorClass>(k);
+    const auto it = model.missized_to.find(from);
+    if (it != model.missized_to.end() && !it->second.empty()) {
+      for (const auto& [to, p] : it->second) c.missized_to[k][static_cast<int>(to)] = p;
+    } else {
+      const auto targets = DefaultMissizedTargets(from);
+      for (const DoorClass t : targets) {
+        c.missized_to[k][static_cast<int>(t)] = 1.0 / static_cast<double>(targets.size());
+      }
+    }
+  }
+  if (!model.false_door_classes.empty()) {
+    for (const auto& [k, p] : model.false_door_classes) c.false_class[static_cast<int>(k)] = p;
+  } else if (doors > 0) {
+    c.false_class = c.map_prior;
+  } else {
+    c.false_class[static_cast<int>(DoorClass::k36)] = 1.0;  // a map without doors
+  }
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------
+
+SensingNoise SensingNoise::None() {
+  SensingNoise n;
+  n.width_sigma_rel = 0;
+  n.jamb_sigma_in = 0;
+  n.wheel_scale_sigma_rel = 0;
+  n.wheel_walk_sigma_in_per_sqrt_in = 0;
+  return n;
+}
+
+double SensingNoise::WallSigmaIn(double length_in) const {
+  const double scale = wheel_scale_sigma_rel * length_in;
+  const double walk2 = wheel_walk_sigma_in_per_sqrt_in * wheel_walk_sigma_in_per_sqrt_in *
+                       std::max(0.0, length_in);
+  return std::sqrt(2.0 * jamb_sigma_in * jamb_sigma_in + scale * scale + walk2);
+}
+
+std::array<ClassRegion, kDoorClasses> DefaultClassRegions() {
+  // docs/sensing.md, DefaultBoundaries(): Table 4.1 plus the Bayes-derived door30 region.
+  return {{{28.5, 31.4}, {31.4, 33.5}, {33.5, 38.8}, {38.8, 42.7}, {56.4, 64.0}, {67.9, 76.3}}};
+}
+
+void StudyConfig::Validate() const {
+  auto positive = [](double v, const char* what) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+      throw std::invalid_argument(std::string(what) + " must be > 0, got " + Num(v));
+    }
+  };
+  auto non_negative = [](double v, const char* what) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      throw std::invalid_argument(std::string(what) + " must be >= 0, got " + Num(v));
+    }
+  };
+  positive(speed_ftps, "speed_ftps");
+  positive(frame_period_s, "frame_period_s");
+  non_negative(noise.width_sigma_rel, "width_sigma_rel");
+  non_negative(noise.jamb_sigma_in, "jamb_sigma_in");
+  non_negative(noise.wheel_scale_sigma_rel, "wheel_scale_sigma_rel");
+  non_negative(noise.wheel_walk_sigma_in_per_sqrt_in, "wheel_walk_sigma_in_per_sqrt_in");
+  non_negative(base_tolerance.metric_rel, "tolerance_rel");
+  non_negative(base_tolerance.metric_abs_in, "tolerance_in");
+  for (int k = 0; k < kDoorClasses; ++k) {
+    const ClassRegion& r = noise.class_region_in[k];
+    const double w = map::DoorClassWidthIn(static_cast<map::DoorClass>(k));
+    if (!(r.lo_in < w && w < r.hi_in)) {
+      throw std::invalid_argument(std::string("class region of ") +
+                                  map::DoorClassName(static_cast<map::DoorClass>(k)) +
+                                  " must contain its nominal width");
+    }
+  }
+  double last = 0;
+  for (double s : relaxation_steps) {
+    if (!(s > last) || s > 1.0) {
+      throw std::invalid_argument("relaxation_steps must increase within (0, 1]");
+    }
+    last = s;
+  }
+  if (first_frame_edges < 1) throw std::invalid_argument("first_frame_edges must be >= 1");
+  if (max_edges < 1) throw std::invalid_argument("max_edges must be >= 1");
+  if (!(bayes.threshold > 0.5 && bayes.threshold < 1.0)) {
+    throw std::invalid_argument("bayes.threshold must be in (0.5, 1)");
+  }
+  if (!(bayes.outlier > 0.0 && bayes.outlier < 0.5)) {
+    throw std::invalid_argument("bayes.outlier must be in (0, 0.5)");
+  }
+}
+
+static StudyConfig StudyConfigFromYaml(const StrictYaml& root) {
+  const StrictYaml node = root.Child("study");
+  StudyConfig c;
+  c.source = node.Get<std::string>("source");
+  c.speed_ftps = node.Get<double>("speed_ftps", 0.01, 100.0, "ft/s");
+  c.frame_period_s = node.Get<double>("frame_period_s", 0.001, 10.0, "s");
+
+  const StrictYaml us = node.Child("ultrasonic");
+  c.noise.width_sigma_rel = us.Get<double>("width_sigma_rel", 0.0, 0.5);
+  c.noise.jamb_sigma_in = us.Get<double>("jamb_sigma_in", 0.0, 24.0, "in");
+  const StrictYaml regions = us.Child("class_regions_in");
+  if (!regions.IsMap()) us.Fail("class_regions_in", "expected a mapping of door class to [lo, hi]");
+  std::array<bool, kDoorClasses> seen{};
+  for (const std::string& key : regions.Keys()) {
+    const map::DoorClass k = ClassKey(regions, key);
+    const auto lohi = regions.Sequence(key);
+    if (lohi.size() != 2) regions.Fail(key, "expected [lo, hi] in inches");
+    ClassRegion r{lohi[0].As<double>(), lohi[1].As<double>()};
+    const double w = map::DoorClassWidthIn(k);
+    if (!(r.lo_in < w && w < r.hi_in)) {
+      regions.Fail(key, "the region must contain the class width " + Num(w) + " in");
+    }
+    c.noise.class_region_in[static_cast<int>(k)] = r;
+    seen[static_cast<int>(k)] = true;
+  }
+  for (int k = 0; k < kDoorClasses; ++k) {
+    if (!seen[k]) {
+      regions.Fail("", std::string("no region for class ") +
+                           map::DoorClassName(static_cast<map::DoorClass>(k)));
+    }
+  }
+  regions.Finish();
+  us.Finish();
+
+  const StrictYaml wheel = node.Child("wheel");
+  c.noise.wheel_scale_sigma_rel = wheel.Get<double>("scale_sigma_rel", 0.0, 0.5);
+  c.noise.wheel_walk_sigma_in_per_sqrt_in =
+      wheel.Get<double>("walk_sigma_in_per_sqrt_in", 0.0, 10.0, "in/sqrt(in)");
+  wheel.Finish();
+
+  const StrictYaml match = node.Child("matching");
+  c.base_tolerance.metric_rel = match.Get<double>("tolerance_rel", 0.0, 1.0);
+  c.base_tolerance.metric_abs_in = match.Get<double>("tolerance_in", 0.0, 120.0, "in");
+  c.base_tolerance.angle_deg = match.Get<double>("angle_tolerance_deg", -1.0, 180.0, "deg");
+  c.relaxation_steps.clear();
+  for (const StrictYaml& s : match.Sequence("relaxation_steps")) {
+    c.relaxation_steps.push_back(s.As<double>());
+  }
+  double last = 0;
+  for (double s : c.relaxation_steps) {
+    if (!(s > last) || s > 1.0) {
+      match.Fail("relaxation_steps", "steps must increase within (0, 1]");
+    }
+    last = s;
+  }
+  c.first_frame_edges = match.Get<int>("first_frame_edges", 1, 100);
+  match.Finish();
+
+  c.max_edges = node.Get<int>("max_edges", 1, 100000);
+
+  const StrictYaml bayes = node.Child("bayes");
+  c.bayes.threshold = bayes.Get<double>("threshold", 0.5, 0.999999);
+  c.bayes.outlier = bayes.Get<double>("outlier", 1e-12, 0.5);
+  c.bayes.max_missed_doors = bayes.Get<int>("max_missed_doors", 0, 4);
+  c.bayes.angle_tolerance_deg = bayes.Get<double>("angle_tolerance_deg", 0.0, 180.0, "deg");
+  bayes.Finish();
+  node.Finish();
+  root.Finish();
+  try {
+    c.Validate();
+  } catch (const std::invalid_argument& e) {
+    node.Fail("", e.what());
+  }
+  return c;
+}
+
+StudyConfig LoadStudyConfig(const std::string& path) {
+  return StudyConfigFromYaml(StrictYaml::LoadFile(path));
+}
+
+StudyConfig ParseStudyConfig(const std::string& text, const std::string& name) {
+  return StudyConfigFromYaml(StrictYaml::LoadString(text, name));
+}
+
+}  // namespace stickrep::recovery

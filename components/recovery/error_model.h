@@ -1,0 +1,126 @@
+#pragma once
+
+// The sensing-error model of the simulation study (§6.4.2, Table 6.10) and the study's own
+// sensing and matching parameters (configs/study.yaml). Two files, two loaders:
+//
+//   configs/error_model_paper.yaml  `error_model:` the fused confusion of the landmark
+//       pipeline — true doors sensed correct / mis-sized / missed, false doors in walls.
+//       A measured file in the same schema can replace it (stickrep-study --error-model).
+//   configs/study.yaml              `study:` ultrasonic width error, wheel (odometry) error,
+//       matching tolerances, the Figure 6.4 relaxation steps, frame rate and speed, limits,
+//       and the Bayes filter's settings.
+//
+// Both loaders are strict (every key checked) and throw stickrep::InputError naming file,
+// line and key.
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "stickrep/map.h"
+#include "stickrep/sequence_matcher.h"
+
+namespace stickrep::recovery {
+
+inline constexpr int kDoorClasses = map::kDoorClassCount;
+using ClassVector = std::array<double, kDoorClasses>;
+using ClassMatrix = std::array<ClassVector, kDoorClasses>;
+
+// Table 6.10 as a generative model of what the landmark pipeline reports (Figure 6.2,
+// step 2). Rates are per true door (they sum to 1) and per wall edge.
+struct ErrorModel {
+  std::string source = "Table 6.10, Walsh";
+  double door_correct = 0.8367;   // true positives, sensed with their class
+  double door_missized = 0.1020;  // true positives sensed with a wrong class
+  double door_missed = 0.0612;    // false negatives
+  double wall_false_door = 0.1591;  // false positives, per wall edge
+  // Per true class, where its mis-sized sightings go (sensed class -> probability). A class
+  // not listed goes to its neighbouring classes equally (DefaultMissizedTargets).
+  std::map<map::DoorClass, std::map<map::DoorClass, double>> missized_to;
+  // The class distribution of false doors; empty: the map's door-class frequencies.
+  std::map<map::DoorClass, double> false_door_classes;
+
+  // The paper's rates (Table 6.10).
+  static ErrorModel Paper() { return ErrorModel{}; }
+  // No sensing error at all (§6.4.1).
+  static ErrorModel None();
+  bool IsErrorFree() const {
+    return door_missized == 0.0 && door_missed == 0.0 && wall_false_door == 0.0;
+  }
+  // Throws std::invalid_argument naming the bad field.
+  void Validate() const;
+};
+
+// Loads the `error_model:` file; throws InputError (file:line:key) on any problem.
+ErrorModel LoadErrorModel(const std::string& path);
+ErrorModel ParseErrorModel(const std::string& text, const std::string& name);
+
+// The classes a mis-sized door of class `c` goes to when the file does not say: the
+// neighbouring single-door widths (30-32-36-40), or for a double door the other double.
+std::vector<map::DoorClass> DefaultMissizedTargets(map::DoorClass c);
+
+// ErrorModel resolved against one map: full matrices, ready for sampling and for the
+// Bayes filter's observation model.
+struct Confusion {
+  double correct = 0, missized = 0, missed = 0, false_door = 0;
+  ClassMatrix missized_to{};  // [true][sensed], each row sums to 1
+  ClassVector false_class{};  // sums to 1
+  ClassVector map_prior{};    // the map's door-class frequencies (sum 1, or all 0)
+};
+Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index);
+
+// Where the measured width of a door of each class may lie when the classifier assigned
+// it that class: the Bayes class regions of Table 4.1 plus door30 (docs/sensing.md).
+struct ClassRegion {
+  double lo_in = 0, hi_in = 0;
+};
+
+// Ultrasonic width error, wheel error and the timing of the study (configs/study.yaml).
+struct SensingNoise {
+  // Short Side width error, relative (docs/sensing.md: sigma fitted to Table 4.1).
+  double width_sigma_rel = 0.0227;
+  std::array<ClassRegion, kDoorClasses> class_region_in{};
+  // Placement error of one jamb along the wall, inches.
+  double jamb_sigma_in = 0.6;
+  // Odometry: a per-run scale error (wheel diameter, tyre wear) and a random walk whose
+  // variance grows with the distance travelled (slip), so the error of a measured wall
+  // grows with its length (§6.3 step 6.1.1.1).
+  double wheel_scale_sigma_rel = 0.01;
+  double wheel_walk_sigma_in_per_sqrt_in = 0.15;
+  static SensingNoise None();
+  // Standard deviation of a measured wall of this true length (both jambs, scale, walk).
+  double WallSigmaIn(double length_in) const;
+};
+
+// Settings of the Bayes filter (SPEC §5) that are not the confusion itself.
+struct BayesSettings {
+  double threshold = 0.995;         // posterior of the best pose needed to report it
+  double outlier = 1e-4;            // probability that a sensed edge is unexplained
+  int max_missed_doors = 2;         // missed doors one sensed wall may span
+  double angle_tolerance_deg = 20;  // sensed corner angle vs map
+};
+
+struct StudyConfig {
+  std::string source;
+  double speed_ftps = 2.6;     // §6.3, the Labmate base
+  double frame_period_s = 0.2;  // §6.3
+  SensingNoise noise;
+  // Tolerance of the level-0 match (Figure 6.4's 0 %): what odometry and jamb placement
+  // deliver inside the envelope. Relaxation adds to metric_rel.
+  map::MatchTolerance base_tolerance{0.06, 4.0, 20.0};
+  std::vector<double> relaxation_steps{0.10, 0.20};  // Figure 6.4
+  int first_frame_edges = 2;  // §6.6.1: a failure this early counts as "in the first frame"
+  int max_edges = 400;        // give-up limit of one run: "did not converge"
+  BayesSettings bayes;
+
+  double FrameTravelIn() const { return speed_ftps * 12.0 * frame_period_s; }
+  void Validate() const;  // throws std::invalid_argument
+};
+
+StudyConfig LoadStudyConfig(const std::string& path);
+StudyConfig ParseStudyConfig(const std::string& text, const std::string& name);
+// Class regions of docs/sensing.md (DefaultBoundaries: Table 4.1 + door30).
+std::array<ClassRegion, kDoorClasses> DefaultClassRegions();
+
+}  // namespace stickrep::recovery
