@@ -1,1 +1,122 @@
+#include "recovery/bayes_localizer.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "recovery/test_support.h"
+
+namespace stickrep::recovery {
+namespace {
+
+using map::DoorClass;
+using testing::Door;
+using testing::Wall;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+class BayesLocalizerTest : public ::testing::Test {
+ protected:
+  BayesLocalizer Make(const ErrorModel& em, double threshold = 0.99) {
+    BayesModel m;
+    m.confusion = Resolve(em, index_);
+    m.noise = SensingNoise{};
+    m.settings.threshold = threshold;
+    return BayesLocalizer(index_, m);
+  }
+  map::Map map_ = testing::CorridorMap();
+  map::MatchIndex index_{map_};
+};
+
+TEST_F(BayesLocalizerTest, EmptyBeforeTheFirstEdge) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  EXPECT_EQ(b.status(), RecoveryStatus::kEmpty);
+  EXPECT_TRUE(b.Top(3).empty());
+}
+
+TEST_F(BayesLocalizerTest, ExactSequenceEndsAtTheTruth) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Wall(150, kNaN, true));  // inside the 200 in wall
+  b.Add(Door(DoorClass::k40));
+  b.Add(Wall(90));
+  b.Add(Door(DoorClass::k36));
+  b.Add(Wall(75));
+  EXPECT_EQ(b.best().edge, 10);
+  EXPECT_EQ(b.best().dir, +1);
+  EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
+}
+
+TEST_F(BayesLocalizerTest, PosteriorSumsToOneAndTopIsSorted) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Door(DoorClass::k36));
+  b.Add(Wall(60));
+  double sum = 0;
+  for (int g = 0; g < index_.EdgeCount(); ++g) {
+    sum += b.PoseProbability(g, +1) + b.PoseProbability(g, -1);
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-9);
+  const auto top = b.Top(4);
+  ASSERT_GE(top.size(), 2u);
+  for (std::size_t i = 1; i < top.size(); ++i) {
+    EXPECT_GE(top[i - 1].probability, top[i].probability);
+  }
+  EXPECT_EQ(b.status(), RecoveryStatus::kAmbiguous);
+}
+
+TEST_F(BayesLocalizerTest, ExplainsAFalseDoorThatSplitsAWall) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Wall(150, kNaN, true));
+  b.Add(Door(DoorClass::k40));
+  b.Add(Wall(30));
+  b.Add(Door(DoorClass::k32));  // false: 30 + 32 + 28 = the 90 in wall
+  b.Add(Wall(28));
+  b.Add(Door(DoorClass::k36));
+  b.Add(Wall(75));
+  EXPECT_EQ(b.best().edge, 10);
+  EXPECT_EQ(b.best().dir, +1);
+  EXPECT_GT(b.best().probability, 0.9);
+}
+
+TEST_F(BayesLocalizerTest, ExplainsAMissedDoorAsOneLongWall) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Wall(150, kNaN, true));
+  b.Add(Door(DoorClass::k40));
+  b.Add(Wall(201));  // 90 + missed 36 + 75
+  b.Add(Door(DoorClass::k40));
+  b.Add(Wall(150, 90.0));
+  EXPECT_EQ(b.best().edge, 12);
+  EXPECT_EQ(b.best().dir, +1);
+  EXPECT_GT(b.best().probability, 0.9);
+}
+
+TEST_F(BayesLocalizerTest, ExplainsAMissizedDoor) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Wall(60, kNaN, true));  // inside the 90 in wall
+  b.Add(Door(DoorClass::k40, 38.9));  // the 36 in door 9, classed 40
+  b.Add(Wall(75));
+  b.Add(Door(DoorClass::k40));
+  b.Add(Wall(150, 90.0));
+  EXPECT_EQ(b.best().edge, 12);
+  EXPECT_EQ(b.best().dir, +1);
+}
+
+TEST_F(BayesLocalizerTest, InvalidEdgesAreRejected) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  map::SensedEdge e = Door(DoorClass::k36);
+  e.metric_in = -1.0;
+  EXPECT_EQ(b.Add(e), RecoveryStatus::kEmpty);
+  EXPECT_EQ(b.rejected(), 1u);
+  EXPECT_EQ(b.edges(), 0);
+}
+
+TEST_F(BayesLocalizerTest, ResetForgetsTheBelief) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Door(DoorClass::k32));
+  b.Reset();
+  EXPECT_EQ(b.status(), RecoveryStatus::kEmpty);
+  EXPECT_EQ(b.edges(), 0);
+}
+
+}  // namespace
+}  // namespace stickrep::recovery

@@ -1,1 +1,106 @@
+#include "recovery/error_model.h"
+
 #include <gtest/gtest.h>
+
+#include "common/input_error.h"
+#include "recovery/test_support.h"
+
+namespace stickrep::recovery {
+namespace {
+
+using map::DoorClass;
+
+std::string Model(const std::string& extra, const std::string& missed = "0.0612") {
+  return "error_model:\n"
+         "  source: \"test\"\n"
+         "  door_correct: 0.8367\n"
+         "  door_missized: 0.1020\n"
+         "  door_missed: " + missed + "\n"
+         "  wall_false_door: 0.1591\n" + extra;
+}
+
+TEST(ErrorModelFile, PaperFileHasTheRatesOfTable610) {
+  const ErrorModel m = LoadErrorModel(std::string(STICKREP_SOURCE_DIR) +
+                                      "/configs/error_model_paper.yaml");
+  EXPECT_DOUBLE_EQ(m.door_correct, 0.8367);
+  EXPECT_DOUBLE_EQ(m.door_missized, 0.1020);
+  EXPECT_DOUBLE_EQ(m.door_missed, 0.0612);
+  EXPECT_DOUBLE_EQ(m.wall_false_door, 0.1591);
+  EXPECT_TRUE(m.missized_to.empty());
+  EXPECT_TRUE(m.false_door_classes.empty());
+}
+
+TEST(ErrorModelFile, ReadsOptionalDistributions) {
+  const ErrorModel m = ParseErrorModel(
+      Model("  missized_to: {\"36\": {\"32\": 0.4, \"40\": 0.6}}\n"
+            "  false_door_classes: {\"36\": 0.7, \"30\": 0.3}\n"),
+      "m.yaml");
+  EXPECT_DOUBLE_EQ(m.missized_to.at(DoorClass::k36).at(DoorClass::k40), 0.6);
+  EXPECT_DOUBLE_EQ(m.false_door_classes.at(DoorClass::k30), 0.3);
+}
+
+TEST(ErrorModelFile, DoorRatesMustSumToOne) {
+  try {
+    ParseErrorModel(Model("", "0.2"), "m.yaml");
+    FAIL() << "accepted rates summing to 1.14";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "m.yaml");
+    EXPECT_EQ(e.line(), 5);
+    EXPECT_NE(e.reason().find("must be 1"), std::string::npos);
+  }
+}
+
+TEST(ErrorModelFile, RateOutsideZeroOneIsRejected) {
+  try {
+    ParseErrorModel(Model("", "1.5"), "m.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "error_model.door_missed");
+  }
+}
+
+TEST(ErrorModelFile, UnknownDoorClassIsRejectedWithItsKey) {
+  try {
+    ParseErrorModel(Model("  false_door_classes: {\"37\": 1.0}\n"), "m.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(e.key().find("37"), std::string::npos);
+    EXPECT_NE(e.reason().find("unknown door class"), std::string::npos);
+  }
+}
+
+TEST(ErrorModelFile, UnknownKeyIsRejected) {
+  EXPECT_THROW(ParseErrorModel(Model("  door_fuzzy: 0.1\n"), "m.yaml"), InputError);
+}
+
+TEST(ErrorModelResolve, MissizedDoorsGoToTheNeighbouringClassesEqually) {
+  const map::Map m = testing::CorridorMap();
+  const map::MatchIndex index(m);
+  const Confusion c = Resolve(ErrorModel::Paper(), index);
+  const int k36 = static_cast<int>(DoorClass::k36);
+  EXPECT_DOUBLE_EQ(c.missized_to[k36][static_cast<int>(DoorClass::k32)], 0.5);
+  EXPECT_DOUBLE_EQ(c.missized_to[k36][static_cast<int>(DoorClass::k40)], 0.5);
+  // False doors follow the map's classes: 3 x 36, 2 x 40, 1 x 32.
+  EXPECT_DOUBLE_EQ(c.false_class[k36], 0.5);
+  EXPECT_DOUBLE_EQ(c.false_class[static_cast<int>(DoorClass::k32)], 1.0 / 6.0);
+}
+
+TEST(StudyConfigFile, ShippedConfigLoads) {
+  const StudyConfig c = LoadStudyConfig(std::string(STICKREP_SOURCE_DIR) + "/configs/study.yaml");
+  EXPECT_DOUBLE_EQ(c.speed_ftps, 2.6);
+  EXPECT_DOUBLE_EQ(c.FrameTravelIn(), 6.24);
+  ASSERT_EQ(c.relaxation_steps.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.relaxation_steps[1], 0.20);
+}
+
+TEST(StudyConfigFile, MissingFileNamesIt) {
+  try {
+    LoadStudyConfig("/nonexistent/study.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "/nonexistent/study.yaml");
+  }
+}
+
+}  // namespace
+}  // namespace stickrep::recovery

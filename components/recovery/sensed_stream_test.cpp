@@ -1,1 +1,107 @@
+#include "recovery/sensed_stream.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "recovery/test_support.h"
+
+namespace stickrep::recovery {
+namespace {
+
+class SensedStreamTest : public ::testing::Test {
+ protected:
+  map::Map map_ = testing::CorridorMap();
+  map::MatchIndex index_{map_};
+  SensingNoise quiet_ = [] {
+    SensingNoise n = SensingNoise::None();
+    n.class_region_in = DefaultClassRegions();
+    return n;
+  }();
+  map::MatchTolerance exact_{0.0, 0.0, 10.0};
+};
+
+TEST_F(SensedStreamTest, WithoutErrorEveryEdgeIsTheMapEdge) {
+  const Confusion clean = Resolve(ErrorModel::None(), index_);
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    SensedStream s(index_, clean, quiet_, exact_, seed);
+    int g = s.start().edge;
+    for (int i = 0; i < 20; ++i) {
+      const StreamEdge* e = s.At(i);
+      ASSERT_NE(e, nullptr);
+      EXPECT_TRUE(e->faithful);
+      EXPECT_EQ(e->truth, g);
+      EXPECT_EQ(e->sensed.code, index_.code(g));
+      if (i > 0 && !map::IsDoorCode(e->sensed.code)) {
+        EXPECT_NEAR(e->sensed.metric_in, index_.metric(g), 1e-9);
+      }
+      g = index_.Step(g, s.dir());
+    }
+  }
+}
+
+TEST_F(SensedStreamTest, SameSeedSameRun) {
+  const Confusion c = Resolve(ErrorModel::Paper(), index_);
+  const SensingNoise noise = SensingNoise{[] {
+    SensingNoise n;
+    n.class_region_in = DefaultClassRegions();
+    return n;
+  }()};
+  SensedStream a(index_, c, noise, exact_, 99), b(index_, c, noise, exact_, 99);
+  for (int i = 0; i < 30; ++i) {
+    EXPECT_EQ(a.At(i)->sensed.code, b.At(i)->sensed.code);
+    EXPECT_EQ(a.At(i)->sensed.metric_in, b.At(i)->sensed.metric_in);
+  }
+}
+
+TEST_F(SensedStreamTest, AFalseDoorSplitsTheWallItSitsIn) {
+  ErrorModel em = ErrorModel::None();
+  em.wall_false_door = 1.0;
+  const Confusion c = Resolve(em, index_);
+  SensedStream s(index_, c, quiet_, exact_, 3);
+  // Find a wall split in three: W1 + ribbon + W2 = the map wall.
+  int found = 0;
+  for (int i = 1; i + 2 < 40; ++i) {
+    const StreamEdge* w1 = s.At(i);
+    const StreamEdge* d = s.At(i + 1);
+    const StreamEdge* w2 = s.At(i + 2);
+    if (w1->sensed.code != map::kWallCode || !map::IsDoorCode(d->sensed.code) ||
+        w2->sensed.code != map::kWallCode || w1->truth != w2->truth || d->faithful) {
+      continue;
+    }
+    EXPECT_TRUE(w1->with_next);
+    EXPECT_NEAR(w1->sensed.metric_in + d->sensed.metric_in + w2->sensed.metric_in,
+                index_.metric(w1->truth), 1e-6);
+    ++found;
+  }
+  EXPECT_GT(found, 3);
+}
+
+TEST_F(SensedStreamTest, MissedDoorsJoinTheWallsAroundThem) {
+  ErrorModel em = ErrorModel::None();
+  em.door_correct = 0.0;
+  em.door_missed = 1.0;
+  const Confusion c = Resolve(em, index_);
+  SensedStream s(index_, c, quiet_, exact_, 5);
+  // No door is ever sensed; between the two corners the walls and doors are one wall:
+  // the corner-to-corner stretch W120 D36 W60 D36 W60 D32 W200 D40 W90 D36 W75 D40 = 825 in,
+  // and the 150 in wall between the two corners.
+  for (int i = 0; i < 10; ++i) {
+    const StreamEdge* e = s.At(i);
+    EXPECT_EQ(e->sensed.code, map::kWallCode);
+    if (i > 0) {
+      EXPECT_TRUE(std::abs(e->sensed.metric_in - 150.0) < 1e-6 ||
+                  std::abs(e->sensed.metric_in - 825.0) < 1e-6)
+          << e->sensed.metric_in;
+    }
+  }
+}
+
+TEST(RunSeeds, DifferForEveryTrialAndRun) {
+  EXPECT_NE(RunSeed(1, 0, 1), RunSeed(1, 1, 0));
+  EXPECT_NE(RunSeed(1, 0, 0), RunSeed(2, 0, 0));
+  EXPECT_EQ(RunSeed(7, 3, 4), RunSeed(7, 3, 4));
+}
+
+}  // namespace
+}  // namespace stickrep::recovery

@@ -1,1 +1,137 @@
+#include "recovery/study.h"
+
 #include <gtest/gtest.h>
+
+#include "recovery/test_support.h"
+#include "stickrep/map_io.h"
+
+namespace stickrep::recovery {
+namespace {
+
+std::vector<MethodSpec> Methods(std::initializer_list<const char*> ids) {
+  std::vector<MethodSpec> out;
+  for (const char* id : ids) {
+    MethodSpec m;
+    if (std::string(id) == "bayes") {
+      m.kind = MethodSpec::Kind::kBayes;
+    } else {
+      m.strategy = *ParseStrategy(id);
+    }
+    out.push_back(m);
+  }
+  return out;
+}
+
+class StudyTest : public ::testing::Test {
+ protected:
+  map::Map map_ = map::LoadMap(std::string(STICKREP_SOURCE_DIR) + "/maps/storefront.yaml");
+  StudyOptions Options() {
+    StudyOptions o;
+    o.trials = 3;
+    o.runs = 60;
+    o.seed = 11;
+    o.config.noise.class_region_in = DefaultClassRegions();
+    o.methods = Methods({"deterministic", "full-suite", "bayes"});
+    return o;
+  }
+};
+
+TEST_F(StudyTest, SameSeedSameNumbersWhateverTheThreads) {
+  StudyOptions one = Options();
+  one.threads = 1;
+  StudyOptions two = Options();
+  two.threads = 2;
+  const DomainResult a = RunStudy(map_, one);
+  const DomainResult b = RunStudy(map_, two);
+  ASSERT_EQ(a.experiments.size(), b.experiments.size());
+  for (std::size_t m = 0; m < a.experiments.size(); ++m) {
+    const auto& ra = a.experiments[m].runs;
+    const auto& rb = b.experiments[m].runs;
+    ASSERT_EQ(ra.size(), rb.size());
+    for (std::size_t i = 0; i < ra.size(); ++i) {
+      EXPECT_EQ(ra[i].outcome, rb[i].outcome);
+      EXPECT_EQ(ra[i].edges, rb[i].edges);
+      EXPECT_EQ(ra[i].travel_in, rb[i].travel_in);
+      EXPECT_EQ(ra[i].had_error, rb[i].had_error);
+    }
+    EXPECT_EQ(a.experiments[m].median().pct_correct, b.experiments[m].median().pct_correct);
+  }
+}
+
+TEST_F(StudyTest, DifferentSeedsGiveDifferentRuns) {
+  StudyOptions o = Options();
+  const DomainResult a = RunStudy(map_, o);
+  o.seed = 12;
+  const DomainResult b = RunStudy(map_, o);
+  int differ = 0;
+  for (std::size_t i = 0; i < a.experiments[0].runs.size(); ++i) {
+    differ += a.experiments[0].runs[i].edges != b.experiments[0].runs[i].edges;
+  }
+  EXPECT_GT(differ, 0);
+}
+
+TEST_F(StudyTest, WithoutErrorEveryRunEndsWithTheCorrectPose) {
+  StudyOptions o = Options();
+  o.error_model = ErrorModel::None();
+  o.config.noise = SensingNoise::None();
+  o.config.noise.class_region_in = DefaultClassRegions();
+  o.methods = Methods({"none", "deterministic", "full-suite", "bayes"});
+  MethodSpec no_error;
+  no_error.error_free = true;
+  o.methods.push_back(no_error);
+  const DomainResult r = RunStudy(map_, o);
+  for (const ExperimentResult& e : r.experiments) {
+    for (const TrialSummary& t : e.trials) {
+      EXPECT_DOUBLE_EQ(t.pct_correct, 100.0) << e.method.Id();
+      EXPECT_DOUBLE_EQ(t.pct_with_error, 0.0) << e.method.Id();
+    }
+  }
+}
+
+TEST_F(StudyTest, ModeledErrorShowsInTheFigures) {
+  const DomainResult r = RunStudy(map_, Options());
+  const ExperimentResult* det = r.Find("deterministic");
+  ASSERT_NE(det, nullptr);
+  EXPECT_GT(det->median().pct_with_error, 20.0);
+  EXPECT_DOUBLE_EQ(det->median().pct_not_converged, 0.0);
+  EXPECT_NEAR(det->median().pct_correct + det->median().pct_incorrect, 100.0, 1e-9);
+  EXPECT_GT(det->median().mean_time_s, 0.0);
+}
+
+TEST_F(StudyTest, ZeroTrialsOrRunsAreRejected) {
+  StudyOptions o = Options();
+  o.trials = 0;
+  EXPECT_THROW(RunStudy(map_, o), std::invalid_argument);
+  o = Options();
+  o.runs = 0;
+  EXPECT_THROW(RunStudy(map_, o), std::invalid_argument);
+}
+
+TEST_F(StudyTest, ErrorRateOutsideZeroOneIsRejected) {
+  StudyOptions o = Options();
+  o.error_model.wall_false_door = 1.5;
+  EXPECT_THROW(RunStudy(map_, o), std::invalid_argument);
+}
+
+TEST_F(StudyTest, EmptyMapIsRejected) {
+  EXPECT_THROW(RunStudy(map::Map(), Options()), std::invalid_argument);
+}
+
+TEST(StudySummary, CountsTheLinesOfTheTables) {
+  std::vector<RunResult> runs(4);
+  runs[0] = {Outcome::kCorrect, false, 5, 0, 100};
+  runs[1] = {Outcome::kCorrect, true, 7, 1, 200};
+  runs[2] = {Outcome::kIncorrect, true, 3, 0, 60};
+  runs[3] = {Outcome::kNotConverged, true, 9, 0, 300};
+  const TrialSummary t = Summarise(runs.data(), 4, 2.6);
+  EXPECT_DOUBLE_EQ(t.pct_with_error, 75.0);
+  EXPECT_NEAR(t.pct_recovered, 100.0 / 3.0, 1e-9);
+  EXPECT_DOUBLE_EQ(t.pct_not_converged, 25.0);
+  EXPECT_DOUBLE_EQ(t.pct_correct, 50.0);
+  EXPECT_DOUBLE_EQ(t.pct_incorrect, 25.0);
+  EXPECT_DOUBLE_EQ(t.mean_edges, 5.0);
+  EXPECT_DOUBLE_EQ(t.mean_distance_ft, 360.0 / 3.0 / 12.0);
+}
+
+}  // namespace
+}  // namespace stickrep::recovery
