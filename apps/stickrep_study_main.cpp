@@ -15,8 +15,10 @@ int main(int argc, char** argv) {
                  "no-error, none, relaxation, first-frame, false-door, missized, full-suite, "
                  "deterministic, bayes (default: no-error deterministic bayes)")
       ->delimiter(',');
-  app.add_option("--trials,-T", o.trials, "Trials per experiment")->check(CLI::PositiveNumber);
-  app.add_option("--runs,-N", o.runs, "Runs per trial")->check(CLI::PositiveNumber);
+  app.add_option("--trials,-T", o.trials, "Trials per experiment (default 10)")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--runs,-N", o.runs, "Runs per trial (default 1000)")
+      ->check(CLI::Range(1, 10000000));
   app.add_option("--seed", o.seed, "Seed of the whole study");
   app.add_option("--threads", o.threads, "Worker threads (0: every core)")
       ->check(CLI::Range(0, 256));

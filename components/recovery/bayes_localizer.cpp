@@ -51,9 +51,8 @@ double BayesLocalizer::WallDensity(double measured, double true_len) const {
 double BayesLocalizer::AngleFactor(int g, int dir, const map::SensedEdge& e) const {
   if (std::isnan(e.angle_deg)) return 1.0;
   const double a = dir > 0 ? index_.angle_start(g) : index_.angle_end(g);
-  return std::abs(a - e.angle_deg) <= model_.settings.angle_tolerance_deg
-             ? 1.0
-             : model_.settings.outlier;
+  return std::abs(a - e.angle_deg) <= model_.settings.angle_tolerance_deg ? 1.0
+                                                                          : model_.settings.outlier;
 }
 
 RecoveryStatus BayesLocalizer::Add(const map::SensedEdge& edge) {
@@ -136,8 +135,8 @@ void BayesLocalizer::First(const map::SensedEdge& e) {
         pn = clean * WallDensity(e.metric_in, len) / index_.EdgeCount();
       }
     }
-    const bool chained = !door && code == map::kWallCode && code == e.code &&
-                         e.metric_is_lower_bound;
+    const bool chained =
+        !door && code == map::kWallCode && code == e.code && e.metric_is_lower_bound;
     for (const int dir : {+1, -1}) {
       const int s = State(g, dir);
       n_[s] = (chained ? n_[s] : 0.0) + pn + eps * unit * prior;
@@ -267,7 +266,8 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
           const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
           const double base = nz.WallSigmaIn(len);
           const double sigma = std::max(
-              1.0, std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
+              1.0,
+              std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
           const double z = (e.metric_in - rest) / sigma;
           density = std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
         }
@@ -322,10 +322,9 @@ std::vector<PoseBelief> BayesLocalizer::Top(int k) const {
     if (p > 0.0) all.push_back({s / 2, (s & 1) ? -1 : +1, p});
   }
   const std::size_t n = std::min<std::size_t>(all.size(), std::max(k, 0));
-  std::partial_sort(all.begin(), all.begin() + n, all.end(),
-                    [](const PoseBelief& a, const PoseBelief& b) {
-                      return a.probability > b.probability;
-                    });
+  std::partial_sort(
+      all.begin(), all.begin() + n, all.end(),
+      [](const PoseBelief& a, const PoseBelief& b) { return a.probability > b.probability; });
   all.resize(n);
   return all;
 }

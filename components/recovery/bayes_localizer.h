@@ -79,9 +79,9 @@ class BayesLocalizer {
   BayesModel model_;
   int states_ = 0;
   double total_length_in_ = 0.0;
-  std::vector<double> n_, i1_, i2_;        // belief per phase and state
-  std::vector<double> c1_, c2_;            // consumed length of the wall in I1 / I2
-  std::vector<std::uint8_t> lb1_, lb2_;    // consumed length is only a lower bound
+  std::vector<double> n_, i1_, i2_;                 // belief per phase and state
+  std::vector<double> c1_, c2_;                     // consumed length of the wall in I1 / I2
+  std::vector<std::uint8_t> lb1_, lb2_;             // consumed length is only a lower bound
   std::vector<double> nn_, ni1_, ni2_, nc1_, nc2_;  // scratch for the next step
   std::vector<std::uint8_t> nlb1_, nlb2_;
   RecoveryStatus status_ = RecoveryStatus::kEmpty;

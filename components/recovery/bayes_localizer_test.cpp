@@ -92,7 +92,7 @@ TEST_F(BayesLocalizerTest, ExplainsAMissedDoorAsOneLongWall) {
 
 TEST_F(BayesLocalizerTest, ExplainsAMissizedDoor) {
   BayesLocalizer b = Make(ErrorModel::Paper());
-  b.Add(Wall(60, kNaN, true));  // inside the 90 in wall
+  b.Add(Wall(60, kNaN, true));        // inside the 90 in wall
   b.Add(Door(DoorClass::k40, 38.9));  // the 36 in door 9, classed 40
   b.Add(Wall(75));
   b.Add(Door(DoorClass::k40));

@@ -29,9 +29,9 @@ void RequireProbability(double p, const std::string& what) {
 DoorClass ClassKey(const StrictYaml& node, const std::string& key) {
   const auto c = map::ParseDoorClass(key);
   if (!c) {
-    node.Fail(key,
-              "unknown door class '" + key + "' (legal: \"30\", \"32\", \"36\", \"40\", "
-              "\"30/30\", \"36/36\")");
+    node.Fail(key, "unknown door class '" + key +
+                       "' (legal: \"30\", \"32\", \"36\", \"40\", "
+                       "\"30/30\", \"36/36\")");
   }
   return *c;
 }
@@ -169,8 +169,8 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   c.false_door = model.wall_false_door;
   double doors = 0;
   for (int k = 0; k < kDoorClasses; ++k) {
-    c.map_prior[k] = static_cast<double>(
-        index.EdgesWithCode(map::DoorCode(static_cast<DoorClass>(k))).size());
+    c.map_prior[k] =
+        static_cast<double>(index.EdgesWithCode(map::DoorCode(static_cast<DoorClass>(k))).size());
     doors += c.map_prior[k];
   }
   for (double& p : c.map_prior) p = doors > 0 ? p / doors : 0.0;
@@ -209,8 +209,8 @@ SensingNoise SensingNoise::None() {
 
 double SensingNoise::WallSigmaIn(double length_in) const {
   const double scale = wheel_scale_sigma_rel * length_in;
-  const double walk2 = wheel_walk_sigma_in_per_sqrt_in * wheel_walk_sigma_in_per_sqrt_in *
-                       std::max(0.0, length_in);
+  const double walk2 =
+      wheel_walk_sigma_in_per_sqrt_in * wheel_walk_sigma_in_per_sqrt_in * std::max(0.0, length_in);
   return std::sqrt(2.0 * jamb_sigma_in * jamb_sigma_in + scale * scale + walk2);
 }
 

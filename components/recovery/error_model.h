@@ -31,9 +31,9 @@ using ClassMatrix = std::array<ClassVector, kDoorClasses>;
 // step 2). Rates are per true door (they sum to 1) and per wall edge.
 struct ErrorModel {
   std::string source = "Table 6.10, Walsh";
-  double door_correct = 0.8367;   // true positives, sensed with their class
-  double door_missized = 0.1020;  // true positives sensed with a wrong class
-  double door_missed = 0.0612;    // false negatives
+  double door_correct = 0.8367;     // true positives, sensed with their class
+  double door_missized = 0.1020;    // true positives sensed with a wrong class
+  double door_missed = 0.0612;      // false negatives
   double wall_false_door = 0.1591;  // false positives, per wall edge
   // Per true class, where its mis-sized sightings go (sensed class -> probability). A class
   // not listed goes to its neighbouring classes equally (DefaultMissizedTargets).
@@ -103,7 +103,7 @@ struct BayesSettings {
 
 struct StudyConfig {
   std::string source;
-  double speed_ftps = 2.6;     // §6.3, the Labmate base
+  double speed_ftps = 2.6;      // §6.3, the Labmate base
   double frame_period_s = 0.2;  // §6.3
   SensingNoise noise;
   // Tolerance of the level-0 match (Figure 6.4's 0 %): what odometry and jamb placement

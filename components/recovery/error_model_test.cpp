@@ -15,13 +15,16 @@ std::string Model(const std::string& extra, const std::string& missed = "0.0612"
          "  source: \"test\"\n"
          "  door_correct: 0.8367\n"
          "  door_missized: 0.1020\n"
-         "  door_missed: " + missed + "\n"
-         "  wall_false_door: 0.1591\n" + extra;
+         "  door_missed: " +
+         missed +
+         "\n"
+         "  wall_false_door: 0.1591\n" +
+         extra;
 }
 
 TEST(ErrorModelFile, PaperFileHasTheRatesOfTable610) {
-  const ErrorModel m = LoadErrorModel(std::string(STICKREP_SOURCE_DIR) +
-                                      "/configs/error_model_paper.yaml");
+  const ErrorModel m =
+      LoadErrorModel(std::string(STICKREP_SOURCE_DIR) + "/configs/error_model_paper.yaml");
   EXPECT_DOUBLE_EQ(m.door_correct, 0.8367);
   EXPECT_DOUBLE_EQ(m.door_missized, 0.1020);
   EXPECT_DOUBLE_EQ(m.door_missed, 0.0612);
@@ -31,10 +34,9 @@ TEST(ErrorModelFile, PaperFileHasTheRatesOfTable610) {
 }
 
 TEST(ErrorModelFile, ReadsOptionalDistributions) {
-  const ErrorModel m = ParseErrorModel(
-      Model("  missized_to: {\"36\": {\"32\": 0.4, \"40\": 0.6}}\n"
-            "  false_door_classes: {\"36\": 0.7, \"30\": 0.3}\n"),
-      "m.yaml");
+  const ErrorModel m = ParseErrorModel(Model("  missized_to: {\"36\": {\"32\": 0.4, \"40\": 0.6}}\n"
+                                             "  false_door_classes: {\"36\": 0.7, \"30\": 0.3}\n"),
+                                       "m.yaml");
   EXPECT_DOUBLE_EQ(m.missized_to.at(DoorClass::k36).at(DoorClass::k40), 0.6);
   EXPECT_DOUBLE_EQ(m.false_door_classes.at(DoorClass::k30), 0.3);
 }

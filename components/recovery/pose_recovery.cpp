@@ -209,8 +209,7 @@ void PoseRecovery::Restart(const SensedEdge& failing) {
 }
 
 bool PoseRecovery::Recover(const SensedEdge& failing) {
-  const bool first_frame =
-      static_cast<int>(sequence_.size()) <= config_.first_frame_edges;
+  const bool first_frame = static_cast<int>(sequence_.size()) <= config_.first_frame_edges;
   switch (config_.strategy) {
     case Strategy::kNone:
       return false;
@@ -270,16 +269,18 @@ bool PoseRecovery::TryRemoveDoors() {
     return std::find(removable_.begin(), removable_.end(), e.code) != removable_.end();
   };
   std::vector<SensedEdge> work = sequence_;
-  bool open = false;          // the newest edge is a wall that is still open
-  bool open_was_lb = false;   // whether that wall was a lower bound before it was opened
+  bool open = false;         // the newest edge is a wall that is still open
+  bool open_was_lb = false;  // whether that wall was a lower bound before it was opened
   int removed = 0;
   for (int i = static_cast<int>(work.size()) - 1; i >= 0; --i) {
     if (i >= static_cast<int>(work.size()) || !removable(work[i])) continue;
     const SensedEdge door = work[i];
-    const double width =
-        door.metric_in > 0.0 ? door.metric_in : map::DoorClassWidthIn(static_cast<map::DoorClass>(door.code - 1));
+    const double width = door.metric_in > 0.0
+                             ? door.metric_in
+                             : map::DoorClassWidthIn(static_cast<map::DoorClass>(door.code - 1));
     const bool prev_wall = i > 0 && work[i - 1].code == map::kWallCode;
-    const bool next_wall = i + 1 < static_cast<int>(work.size()) && work[i + 1].code == map::kWallCode;
+    const bool next_wall =
+        i + 1 < static_cast<int>(work.size()) && work[i + 1].code == map::kWallCode;
     const bool last = i + 1 == static_cast<int>(work.size());
     // A false door sat on a wall: the wall surface it covered joins its neighbours.
     if (prev_wall) {

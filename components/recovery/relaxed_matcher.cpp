@@ -51,7 +51,8 @@ std::size_t RelaxedMatcher::Extend(const map::SensedEdge& edge) {
   if (length_ == 0) {
     if (door) {
       for (int k = 0; k < map::kDoorClassCount; ++k) {
-        for (const std::int32_t g : index_.EdgesWithCode(map::DoorCode(static_cast<map::DoorClass>(k)))) {
+        for (const std::int32_t g :
+             index_.EdgesWithCode(map::DoorCode(static_cast<map::DoorClass>(k)))) {
           if (!AcceptsDoor(g, +1, edge, /*first=*/true)) continue;
           candidates_.push_back({g, g, +1});
           candidates_.push_back({g, g, -1});
@@ -70,8 +71,8 @@ std::size_t RelaxedMatcher::Extend(const map::SensedEdge& edge) {
       map::Candidate c = candidates_[i];
       const int next = index_.Step(c.last, c.dir);
       if (next < 0) continue;
-      const bool ok = door ? AcceptsDoor(next, c.dir, edge, false)
-                           : plain_.Matches(next, c.dir, edge, false);
+      const bool ok =
+          door ? AcceptsDoor(next, c.dir, edge, false) : plain_.Matches(next, c.dir, edge, false);
       if (!ok) continue;
       c.last = next;
       candidates_[kept++] = c;

@@ -207,8 +207,7 @@ void SensedStream::FlushRun(bool door_follows) {
   e.sensed.code = run_.code;
   e.sensed.metric_in = MeasureLength(true_len, run_lower_bound_ ? 1 : 2);
   e.sensed.metric_is_lower_bound = run_lower_bound_;
-  e.sensed.angle_deg =
-      first_emitted_ ? run_.start_angle : std::numeric_limits<double>::quiet_NaN();
+  e.sensed.angle_deg = first_emitted_ ? run_.start_angle : std::numeric_limits<double>::quiet_NaN();
   e.truth = run_.truth;
   e.end_in = run_.b;
   bool faithful = !run_error_ && run_pieces_ == 1 && run_whole_;

@@ -69,9 +69,8 @@ class SensedStream {
  public:
   // `seed` determines the start and every error of the run. `tolerance` is the level-0
   // tolerance, used only to label edges faithful or not.
-  SensedStream(const map::MatchIndex& index, const Confusion& confusion,
-               const SensingNoise& noise, const map::MatchTolerance& tolerance,
-               std::uint64_t seed);
+  SensedStream(const map::MatchIndex& index, const Confusion& confusion, const SensingNoise& noise,
+               const map::MatchTolerance& tolerance, std::uint64_t seed);
 
   // The i-th sensed edge (0-based), generated on demand; nullptr when the run reached the
   // end of an open ring before it.
@@ -83,9 +82,9 @@ class SensedStream {
   // One stretch of surface in travel coordinates, before it becomes a sensed edge.
   struct Piece {
     enum Kind { kSurface, kDoor, kOther } kind = kSurface;
-    double a = 0, b = 0;  // travel coordinates of its ends
+    double a = 0, b = 0;                    // travel coordinates of its ends
     map::SymbolCode code = map::kWallCode;  // sensed code (doors, others)
-    double true_width_in = 0;  // doors: the ribbon's true width
+    double true_width_in = 0;               // doors: the ribbon's true width
     int truth = 0;
     bool error = false;        // made by an injected error (missed, false or mis-sized door)
     bool whole_edge = false;   // exactly one whole map edge
@@ -117,10 +116,10 @@ class SensedStream {
   bool ended_ = false;
   // The wall surface being accumulated into one sensed wall.
   bool run_active_ = false;
-  Piece run_;                   // a, start_angle, code of the run; b and truth of its end
+  Piece run_;  // a, start_angle, code of the run; b and truth of its end
   int run_pieces_ = 0;
   bool run_error_ = false;
-  bool run_whole_ = false;      // one whole map edge (or the seen part of the first one)
+  bool run_whole_ = false;  // one whole map edge (or the seen part of the first one)
   bool run_lower_bound_ = false;
   bool run_last_missed_ = false;  // its newest piece is a missed door
   bool first_emitted_ = false;

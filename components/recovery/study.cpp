@@ -114,8 +114,8 @@ RunResult RunOne(MethodRunner& m, SensedStream& stream, int max_edges, double fr
     } else {
       for (const map::SensedEdge& e : batch) st = m.bayes->Add(e);
       if (st == RecoveryStatus::kLocalized) {
-        pose = map::Candidate{0, m.bayes->best().edge,
-                              static_cast<std::int8_t>(m.bayes->best().dir)};
+        pose =
+            map::Candidate{0, m.bayes->best().edge, static_cast<std::int8_t>(m.bayes->best().dir)};
       }
     }
     if (pose) {
@@ -208,9 +208,8 @@ DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
     }
   };
 
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : std::max(1u, std::thread::hardware_concurrency());
+  const int threads =
+      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
   if (options.progress) {

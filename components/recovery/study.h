@@ -66,7 +66,7 @@ struct TrialSummary {
 struct ExperimentResult {
   MethodSpec method;
   std::vector<TrialSummary> trials;
-  int median_trial = 0;  // the trial reported (median of the error share, or of the edges)
+  int median_trial = 0;         // the trial reported (median of the error share, or of the edges)
   std::vector<RunResult> runs;  // trial-major, trials x runs
   const TrialSummary& median() const { return trials[median_trial]; }
 };

@@ -31,31 +31,41 @@ struct PaperEntry {
 
 // Tables 6.11–6.21 (§6.5–§6.8), exactly as printed.
 constexpr PaperEntry kPaperLines[] = {
-    {"engineering_building_3f", "none",
+    {"engineering_building_3f",
+     "none",
      {"6.11", "Performance without heuristics", 43.80, 0.00, 41.70, 57.30, 1.00}},
-    {"engineering_building_3f", "first-frame",
+    {"engineering_building_3f",
+     "first-frame",
      {"6.12", "Performance with First Frame Heuristic", 43.30, 15.70, 34.80, 63.50, 1.70}},
-    {"engineering_building_3f", "false-door",
+    {"engineering_building_3f",
+     "false-door",
      {"6.13", "Performance with False Door Heuristic", 43.67, 40.30, 23.40, 74.00, 2.60}},
-    {"engineering_building_3f", "missized",
+    {"engineering_building_3f",
+     "missized",
      {"6.14", "Performance with Mis-sized Heuristic", 44.30, 28.37, 31.90, 66.90, 1.20}},
-    {"engineering_building_3f", "full-suite",
+    {"engineering_building_3f",
+     "full-suite",
      {"6.15", "Performance with Full Heuristic Suite", 42.20, 62.80, 8.20, 84.30, 7.50}},
-    {"engineering_building_3f", "deterministic",
-     {"6.16", "Performance of deterministic recovery in Engineering Building", 41.50, 94.70,
-      0.00, 97.80, 2.20}},
-    {"wells_hall_7f", "deterministic",
+    {"engineering_building_3f",
+     "deterministic",
+     {"6.16", "Performance of deterministic recovery in Engineering Building", 41.50, 94.70, 0.00,
+      97.80, 2.20}},
+    {"wells_hall_7f",
+     "deterministic",
      {"6.18", "Performance of deterministic recovery in Wells Hall", 69.70, 90.82, 0.00, 93.60,
       6.40}},
-    {"regular_polygon_46", "deterministic",
-     {"6.19", "Performance of deterministic recovery in regular polygon", 96.00, 97.92, 0.00,
-      98.00, 2.00}},
-    {"storefront", "deterministic",
+    {"regular_polygon_46",
+     "deterministic",
+     {"6.19", "Performance of deterministic recovery in regular polygon", 96.00, 97.92, 0.00, 98.00,
+      2.00}},
+    {"storefront",
+     "deterministic",
      {"6.20", "Performance of deterministic recovery along synthetic storefront", 47.40, 93.15,
       0.00, 96.10, 3.90}},
-    {"wells_hall_7f_modified", "deterministic",
-     {"6.21", "Performance of deterministic recovery in a modified Wells Hall", 62.40, 91.35,
-      0.00, 94.60, 5.40}},
+    {"wells_hall_7f_modified",
+     "deterministic",
+     {"6.21", "Performance of deterministic recovery in a modified Wells Hall", 62.40, 91.35, 0.00,
+      94.60, 5.40}},
 };
 
 // Table 6.22, modeled error.
@@ -73,8 +83,7 @@ constexpr PaperModeled kPaperModeled[] = {
 
 // The five domains of §6.8 in the order of Table 6.22.
 constexpr const char* kSuiteMaps[] = {"engineering_building_3f", "wells_hall_7f",
-                                      "wells_hall_7f_modified", "regular_polygon_46",
-                                      "storefront"};
+                                      "wells_hall_7f_modified", "regular_polygon_46", "storefront"};
 
 std::string Paper(std::optional<double> v, int decimals = 2) {
   return v ? fmt::format("{:.{}f}", *v, decimals) : std::string("-");
@@ -183,8 +192,8 @@ void WritePngs(const std::string& dir, const DomainResult& d, const StudyOptions
       title = e.method.Id() + " with error: " + DomainLabel(d.map_name);
     }
     title += fmt::format(" (median trial, seed {})", o.seed);
-    const plot::BarChart chart = plot::IntegerHistogramOf(
-        edges, 1, std::min(hi, 120), title, "edges sensed before the pose", "runs");
+    const plot::BarChart chart = plot::IntegerHistogramOf(edges, 1, std::min(hi, 120), title,
+                                                          "edges sensed before the pose", "runs");
     plot::WriteBarChartPng(chart, dir + "/" + d.map_name + "_" + e.method.Id() + ".png");
   }
 }
@@ -235,8 +244,9 @@ std::string DomainLabel(const std::string& map_name) {
 }
 
 void PrintDomain(std::ostream& out, const DomainResult& d, const StudyOptions& o) {
-  fmt::print(out, "\n=== {} ({}: {} edges, mean edge {:.2f} in) — {} trials x {} runs, seed {}, "
-                  "{:.1f} s ===\n",
+  fmt::print(out,
+             "\n=== {} ({}: {} edges, mean edge {:.2f} in) — {} trials x {} runs, seed {}, "
+             "{:.1f} s ===\n",
              DomainLabel(d.map_name), d.map_name, d.map_edges, d.mean_edge_metric_in, o.trials,
              o.runs, o.seed, d.seconds);
   for (const ExperimentResult& e : d.experiments) {
@@ -262,8 +272,8 @@ void PrintDomain(std::ostream& out, const DomainResult& d, const StudyOptions& o
          p ? std::optional<double>(p->incorrect) : std::nullopt);
   }
   // All methods of this domain side by side, with the spread over trials.
-  fmt::print(out, "\n  {:<15} {:>7} {:>7} {:>7} {:>8} {:>8} {:>7} {:>8} {:>7} {:>9}  {}\n", "method",
-             "error%", "recov%", "noconv%", "correct%", "incorr%", "edges", "dist ft",
+  fmt::print(out, "\n  {:<15} {:>7} {:>7} {:>7} {:>8} {:>8} {:>7} {:>8} {:>7} {:>9}  {}\n",
+             "method", "error%", "recov%", "noconv%", "correct%", "incorr%", "edges", "dist ft",
              "time s", "restarts", "correct% over trials (min-max)");
   for (const ExperimentResult& e : d.experiments) {
     const TrialSummary& t = e.median();
@@ -272,29 +282,31 @@ void PrintDomain(std::ostream& out, const DomainResult& d, const StudyOptions& o
       lo = std::min(lo, x.pct_correct);
       hi = std::max(hi, x.pct_correct);
     }
-    fmt::print(out, "  {:<15} {:>7.2f} {:>7.2f} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>8.2f} {:>7.2f} {:>9.2f}  {:.1f}-{:.1f}\n",
-               e.method.Id(), t.pct_with_error, t.pct_recovered, t.pct_not_converged,
-               t.pct_correct, t.pct_incorrect, t.mean_edges, t.mean_distance_ft, t.mean_time_s,
-               t.mean_restarts, lo, hi);
+    fmt::print(out,
+               "  {:<15} {:>7.2f} {:>7.2f} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>8.2f} {:>7.2f} "
+               "{:>9.2f}  {:.1f}-{:.1f}\n",
+               e.method.Id(), t.pct_with_error, t.pct_recovered, t.pct_not_converged, t.pct_correct,
+               t.pct_incorrect, t.mean_edges, t.mean_distance_ft, t.mean_time_s, t.mean_restarts,
+               lo, hi);
   }
 }
 
 void PrintSummary(std::ostream& out, const std::vector<DomainResult>& results) {
   fmt::print(out, "\nTable 6.22  Comparison of domain performance (median trials): ours (paper)\n");
-  fmt::print(out, "  {:<16} {:<14} {:>16} {:>18} {:>18} {:>16}\n", "Domain", "Error type",
-             "Edges", "Distance (ft)", "Time (sec)", "Accuracy (%)");
+  fmt::print(out, "  {:<16} {:<14} {:>16} {:>18} {:>18} {:>16}\n", "Domain", "Error type", "Edges",
+             "Distance (ft)", "Time (sec)", "Accuracy (%)");
   for (const DomainResult& d : results) {
     auto row = [&](const char* label, const ExperimentResult* e, std::optional<PaperSummary> p) {
       if (e == nullptr) return;
       const TrialSummary& t = e->median();
-      fmt::print(out, "  {:<16} {:<14} {:>16} {:>18} {:>18} {:>16}\n", DomainLabel(d.map_name),
-                 label,
-                 fmt::format("{:.2f} ({})", t.mean_edges, Paper(p ? p->edges : std::optional<double>())),
-                 fmt::format("{:.2f} ({})", t.mean_distance_ft,
-                             Paper(p ? p->distance_ft : std::optional<double>())),
-                 fmt::format("{:.2f} ({})", t.mean_time_s, Paper(p ? p->time_s : std::optional<double>())),
-                 fmt::format("{:.1f} ({})", t.pct_correct,
-                             Paper(p ? p->accuracy_pct : std::optional<double>(), 1)));
+      fmt::print(
+          out, "  {:<16} {:<14} {:>16} {:>18} {:>18} {:>16}\n", DomainLabel(d.map_name), label,
+          fmt::format("{:.2f} ({})", t.mean_edges, Paper(p ? p->edges : std::optional<double>())),
+          fmt::format("{:.2f} ({})", t.mean_distance_ft,
+                      Paper(p ? p->distance_ft : std::optional<double>())),
+          fmt::format("{:.2f} ({})", t.mean_time_s, Paper(p ? p->time_s : std::optional<double>())),
+          fmt::format("{:.1f} ({})", t.pct_correct,
+                      Paper(p ? p->accuracy_pct : std::optional<double>(), 1)));
     };
     row("None", d.Find("no-error"), PaperSummaryFor(d.map_name, false));
     row("Modeled", d.Find("deterministic"), PaperSummaryFor(d.map_name, true));
@@ -303,9 +315,8 @@ void PrintSummary(std::ostream& out, const std::vector<DomainResult>& results) {
   fmt::print(out,
              "\nBayes filter vs deterministic recovery on the same runs (modeled error, median "
              "trials)\n");
-  fmt::print(out, "  {:<16} {:>14} {:>14} {:>12} {:>12} {:>14} {:>14}\n", "Domain",
-             "determ. corr%", "Bayes corr%", "determ. edg", "Bayes edg", "determ. incorr%",
-             "Bayes incorr%");
+  fmt::print(out, "  {:<16} {:>14} {:>14} {:>12} {:>12} {:>14} {:>14}\n", "Domain", "determ. corr%",
+             "Bayes corr%", "determ. edg", "Bayes edg", "determ. incorr%", "Bayes incorr%");
   for (const DomainResult& d : results) {
     const ExperimentResult* det = d.Find("deterministic");
     const ExperimentResult* bay = d.Find("bayes");
@@ -345,8 +356,8 @@ int RunTool(const ToolOptions& opt, std::ostream& out, std::ostream& err) {
         std::vector<std::string> ids = {"no-error", "deterministic", "bayes"};
         if (std::string(name) == "engineering_building_3f") {
           // §6.6: the heuristics were studied on the Engineering Building only.
-          ids = {"no-error", "none", "relaxation", "first-frame", "false-door", "missized",
-                 "full-suite", "deterministic", "bayes"};
+          ids = {"no-error", "none",       "relaxation",    "first-frame", "false-door",
+                 "missized", "full-suite", "deterministic", "bayes"};
         }
         std::vector<MethodSpec> methods;
         for (const auto& id : ids) methods.push_back(ParseMethod(id));
@@ -377,9 +388,11 @@ int RunTool(const ToolOptions& opt, std::ostream& out, std::ostream& err) {
     }
     current_file.clear();
 
-    fmt::print(out, "stickrep-study: seed {}, {} trials x {} runs, error model '{}', {} thread(s)\n",
-               opt.seed, opt.trials, opt.runs, base.error_model.source,
-               opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+    fmt::print(
+        out, "stickrep-study: seed {}, {} trials x {} runs, error model '{}', {} thread(s)\n",
+        opt.seed, opt.trials, opt.runs, base.error_model.source,
+        opt.threads > 0 ? opt.threads
+                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
     ProgressBar bar(opt.progress);
     std::vector<DomainResult> results;
     std::vector<StudyOptions> used;
@@ -423,8 +436,8 @@ int RunTool(const ToolOptions& opt, std::ostream& out, std::ostream& err) {
     err << FormatInputError(e.file(), e.line(), e.key(), e.reason()) << "\n";
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
-    err << (current_file.empty() ? std::string("stickrep-study") : current_file) << ": "
-        << e.what() << "\n";
+    err << (current_file.empty() ? std::string("stickrep-study") : current_file) << ": " << e.what()
+        << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
     err << "stickrep-study: " << e.what() << "\n";

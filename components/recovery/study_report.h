@@ -34,12 +34,12 @@ std::string DomainLabel(const std::string& map_name);
 
 struct ToolOptions {
   std::vector<std::string> maps;
-  std::string suite;  // "" or "paper"
+  std::string suite;                 // "" or "paper"
   std::vector<std::string> methods;  // ids; empty: no-error, deterministic, bayes
   int trials = 10;
   int runs = 1000;
   std::uint64_t seed = 1994;
-  int threads = 0;  // 0: every core
+  int threads = 0;               // 0: every core
   std::string error_model_path;  // "" : configs/error_model_paper.yaml
   std::string config_path;       // "" : configs/study.yaml
   std::string json_path;

@@ -19,19 +19,11 @@ inline map::Map CorridorMap() {
   map::Ring ring;
   ring.id = "corridor";
   ring.closed = true;
-  ring.edges = {Edge::Wall(120),
-                Edge::Door(DoorClass::k36),
-                Edge::Wall(60),
-                Edge::Door(DoorClass::k36),
-                Edge::Wall(60),
-                Edge::Door(DoorClass::k32),
-                Edge::Wall(200),
-                Edge::Door(DoorClass::k40),
-                Edge::Wall(90),
-                Edge::Door(DoorClass::k36),
-                Edge::Wall(75),
-                Edge::Door(DoorClass::k40),
-                Edge::Wall(150)};
+  ring.edges = {
+      Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(60),  Edge::Door(DoorClass::k36),
+      Edge::Wall(60),  Edge::Door(DoorClass::k32), Edge::Wall(200), Edge::Door(DoorClass::k40),
+      Edge::Wall(90),  Edge::Door(DoorClass::k36), Edge::Wall(75),  Edge::Door(DoorClass::k40),
+      Edge::Wall(150)};
   double x = 0;
   for (std::size_t i = 0; i < ring.edges.size(); ++i) {
     map::Node n;
