@@ -7,6 +7,7 @@
 
 #include "basePubSubTypes.h"
 #include "landmark/landmark_pipeline.h"
+#include "landmark/odometer_history.h"
 #include "perceptionPubSubTypes.h"
 #include "runtime/endpoint.h"
 #include "sensorsPubSubTypes.h"
@@ -98,13 +99,20 @@ class LandmarkNode : public runtime::ProcessNode {
       ctx_->counters.Drop("robot/odometry", "non-finite distance");
       return;
     }
-    distance_in_ = o.distance_in();
+    if (!odometer_.Add(o.header().stamp_ns(), o.distance_in())) {
+      ctx_->counters.Drop("robot/odometry", "time went backwards");
+    }
   }
 
   void OnImage(const msgs::Image& m) {
     ctx_->counters.CountIn();
     if (last_scan_ns_ == 0 || std::llabs(m.header().stamp_ns() - last_scan_ns_) > max_scan_age_ns_) {
       ctx_->counters.Drop("robot/camera/image", "no sonar scan near the frame in time");
+      return;
+    }
+    const std::optional<double> odometer_in = odometer_.At(m.header().stamp_ns(), max_scan_age_ns_);
+    if (!odometer_in) {
+      ctx_->counters.Drop("robot/camera/image", "no odometry near the frame in time");
       return;
     }
     frames_++;
@@ -134,7 +142,7 @@ class LandmarkNode : public runtime::ProcessNode {
     msg.center_offset_in(out.center_offset_in);
     msg.look_angle_rad(o.look_angle_rad);
     msg.in_envelope(o.in_envelope);
-    msg.odometry_distance_in(distance_in_);
+    msg.odometry_distance_in(*odometer_in);
     msg.image_stamp_ns(m.header().stamp_ns());
     if (writer_->Publish(msg, m.header().stamp_ns())) {
       ctx_->counters.CountOut();
@@ -148,7 +156,7 @@ class LandmarkNode : public runtime::ProcessNode {
   int64_t max_scan_age_ns_ = 300000000;
   sensing::SonarScan last_scan_;
   int64_t last_scan_ns_ = 0;
-  double distance_in_ = 0.0;
+  OdometerHistory odometer_;
   uint64_t frames_ = 0, doors_ = 0, no_door_ = 0;
   std::unique_ptr<runtime::Writer<msgs::LandmarkObservationPubSubType>> writer_;
   std::unique_ptr<runtime::Reader<msgs::SonarScanPubSubType>> scans_;

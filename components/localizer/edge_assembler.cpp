@@ -35,8 +35,9 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in) {
   if (!have_odometer_) {
     have_odometer_ = true;
     start_in_ = odometer_in;
+    odometer_in_ = odometer_in;
   }
-  if (std::abs(odometer_in - odometer_in_) > 1e-6 && direction_ == 0) {
+  if (direction_ == 0 && std::abs(odometer_in - start_in_) > 1e-6) {
     direction_ = odometer_in > start_in_ ? +1 : -1;
   }
   odometer_in_ = odometer_in;
@@ -47,26 +48,59 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in) {
   });
   while (!open_.empty() &&
          direction_ * (odometer_in_ - open_.front().along()) > config_.out_of_view_in) {
-    const Track t = open_.front();
+    Track t = open_.front();
     open_.erase(open_.begin());
-    if (t.frames >= config_.min_frames) Emit(t, out);
+    if (t.frames < config_.min_frames) continue;
+    // A leaf of a double door: the next door starts right at this one's far jamb. That
+    // door is in view already (its centre is nearer than this one's by about a leaf), so
+    // it is an open track now; hand this leaf over to it.
+    const map::DoorClass leaf = t.VotedClass();
+    const double far_jamb = t.along() + direction_ * t.MedianWidth() / 2.0;
+    if (!t.first_leaf && (leaf == map::DoorClass::k30 || leaf == map::DoorClass::k36)) {
+      auto next = std::find_if(open_.begin(), open_.end(), [&](const Track& n) {
+        const double near = n.along() - direction_ * n.MedianWidth() / 2.0;
+        return n.VotedClass() == leaf && std::abs(near - far_jamb) < config_.min_wall_in;
+      });
+      if (next != open_.end()) {
+        next->first_leaf = leaf;
+        next->first_leaf_near_jamb_in = t.along() - direction_ * t.MedianWidth() / 2.0;
+        continue;
+      }
+    }
+    Emit(t, out);
   }
   return out;
 }
 
+map::DoorClass EdgeAssembler::Track::VotedClass() const {
+  return static_cast<map::DoorClass>(
+      std::max_element(std::begin(class_weight), std::end(class_weight)) - std::begin(class_weight));
+}
+
+double EdgeAssembler::Track::MedianWidth() const {
+  std::vector<double> w = widths;
+  std::nth_element(w.begin(), w.begin() + w.size() / 2, w.end());
+  return w[w.size() / 2];
+}
+
 void EdgeAssembler::Emit(const Track& t, std::vector<map::SensedEdge>& out) {
-  const int best = static_cast<int>(std::max_element(std::begin(t.class_weight),
-                                                     std::end(t.class_weight)) -
-                                    std::begin(t.class_weight));
-  std::vector<double> widths = t.widths;
-  std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
-  const double width = widths[widths.size() / 2];
-  const double near_jamb = t.along() - direction_ * width / 2.0;
+  const double width = t.MedianWidth();
   const double far_jamb = t.along() + direction_ * width / 2.0;
+  if (t.first_leaf && *t.first_leaf == t.VotedClass()) {
+    const map::DoorClass double_class =
+        *t.first_leaf == map::DoorClass::k30 ? map::DoorClass::k30_30 : map::DoorClass::k36_36;
+    EmitEdges(t.first_leaf_near_jamb_in, far_jamb, double_class, out);
+    return;
+  }
+  EmitEdges(t.along() - direction_ * width / 2.0, far_jamb, t.VotedClass(), out);
+}
+
+void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::DoorClass door_class,
+                              std::vector<map::SensedEdge>& out) {
   // The wall before this door: from the previous door's far jamb, or from where the
   // sequence began (then only a lower bound: the robot started inside it).
   const double wall_from = last_jamb_in_ ? *last_jamb_in_ : start_in_;
-  const double wall_in = direction_ * (near_jamb - wall_from);
+  const double wall_in = direction_ * (near_jamb_in - wall_from);
   if (wall_in >= config_.min_wall_in) {
     map::SensedEdge wall;
     wall.code = map::kWallCode;
@@ -76,11 +110,11 @@ void EdgeAssembler::Emit(const Track& t, std::vector<map::SensedEdge>& out) {
     sequence_.push_back(wall);
   }
   map::SensedEdge door;
-  door.code = map::DoorCode(static_cast<map::DoorClass>(best));
-  door.metric_in = width;
+  door.code = map::DoorCode(door_class);
+  door.metric_in = direction_ * (far_jamb_in - near_jamb_in);
   out.push_back(door);
   sequence_.push_back(door);
-  last_jamb_in_ = far_jamb;
+  last_jamb_in_ = far_jamb_in;
 }
 
 }  // namespace stickrep::localizer

@@ -38,7 +38,10 @@ struct EdgeAssemblerConfig {
 // edges (§6.3, Figure 6.2 steps 3-4): a door edge per tracked door (class by
 // confidence-weighted vote, width by median), and between consecutive doors a wall edge
 // whose length is the odometry distance between their facing jambs. The wall the robot
-// started in is only partly seen: its length is a lower bound.
+// started in is only partly seen: its length is a lower bound. The detector sees the two
+// leaves of a double door as two doors with no wall between (the meeting stile is a jamb
+// to it); two such leaves of class 30 or 36 become one 30/30 or 36/36 edge, as the map has
+// them (Table 4.1's double-door classes).
 class EdgeAssembler {
  public:
   explicit EdgeAssembler(EdgeAssemblerConfig config = {}) : config_(config) {}
@@ -61,9 +64,17 @@ class EdgeAssembler {
     int frames = 0;
     double class_weight[map::kDoorClassCount] = {};
     std::vector<double> widths;
+    // Set when this track is the second leaf of a double door: the first leaf's class and
+    // its near jamb, where the double door begins.
+    std::optional<map::DoorClass> first_leaf;
+    double first_leaf_near_jamb_in = 0.0;
     double along() const { return along_sum / frames; }
+    map::DoorClass VotedClass() const;
+    double MedianWidth() const;
   };
   void Emit(const Track& t, std::vector<map::SensedEdge>& out);
+  void EmitEdges(double near_jamb_in, double far_jamb_in, map::DoorClass door_class,
+                 std::vector<map::SensedEdge>& out);
 
   EdgeAssemblerConfig config_;
   std::vector<Track> open_;

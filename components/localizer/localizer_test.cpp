@@ -85,6 +85,28 @@ TEST(EdgeAssemblerTest, TwoDoorsGiveAPartialWallADoorAnExactWallAndADoor) {
   EXPECT_EQ(edges[3].code, map::DoorCode(map::DoorClass::k40));
 }
 
+TEST(EdgeAssemblerTest, FirstOdometerReadingAwayFromZeroStillGivesTheRightDirection) {
+  EdgeAssembler a;
+  a.Advance(500.0);
+  a.Advance(506.0);
+  EXPECT_EQ(a.travel_direction(), +1);
+}
+
+TEST(EdgeAssemblerTest, TwoAdjacentLeavesOfTheSameClassBecomeOneDoubleDoor) {
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  // A 36/36 double door spanning 100..172 seen as two 35 in leaves around a 2 in stile.
+  for (double odo = 0.0; odo <= 300.0; odo += 6.0) {
+    for (double centre : {117.5, 154.5}) {
+      if (std::abs(centre - odo) < 12.0) a.AddSighting({map::DoorClass::k36, 35.0, 0.8, centre});
+    }
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36_36));
+  EXPECT_THAT(edges[1].metric_in, DoubleNear(72.0, 1e-9));
+}
+
 TEST(EdgeAssemblerTest, DoorSeenInOneFrameOnlyIsDroppedAsSpurious) {
   EdgeAssembler a;
   a.Advance(0.0);

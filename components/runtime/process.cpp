@@ -92,8 +92,8 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
                           system->fastdds_profile_name},
         std::move(catalog));
     StatusReporter status(*participant, name, counters);
-    NodeContext ctx{name,   *participant, executor, log, *system,
-                    config, counters,     WallClockNowNs};
+    NodeContext ctx{name,   *participant, executor,       log, *system,
+                    config, counters,     WallClockNowNs, [] { KeepRunning() = false; }};
     node = make_node();
     node->Configure(ctx);
     status.Publish(StatusReporter::State::kInactive, "configured");

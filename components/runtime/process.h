@@ -49,6 +49,8 @@ struct NodeContext {
   StrictYaml config;  // the component's own top-level key, e.g. `sonar:`
   SampleCounters& counters;
   std::function<int64_t()> now_ns;
+  // Ends the process cleanly after the current callback (a mission that is done).
+  std::function<void()> request_stop;
 };
 
 // A process's logic behind an explicit lifecycle (nav2 lifecycle nodes): Configure creates

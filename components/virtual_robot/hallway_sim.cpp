@@ -21,6 +21,7 @@ HallwaySim::HallwaySim(const map::Map& map, const SimWorldConfig& world,
   for (const map::Edge& e : ring.edges) {
     edge_start_in_.push_back(x);
     is_door_.push_back(e.IsDoor());
+    is_double_.push_back(e.IsDoor() && map::IsDoubleDoor(*e.door_class));
     x += e.metric_in;
   }
   edge_start_in_.push_back(x);
@@ -89,11 +90,23 @@ std::vector<uint8_t> HallwaySim::RenderFrame() {
     const auto it = std::upper_bound(edge_start_in_.begin(), edge_start_in_.end(), x);
     const int e = std::clamp(static_cast<int>(it - edge_start_in_.begin()) - 1, 0,
                              static_cast<int>(is_door_.size()) - 1);
-    if (!is_door_[e]) continue;
-    const double from_start = x - edge_start_in_[e];
-    const double to_end = edge_start_in_[e + 1] - x;
-    column_is_door[u] = true;
-    column_shade[u] = (from_start < world_.jamb_width_in || to_end < world_.jamb_width_in) ? 50 : 110;
+    const int n = static_cast<int>(is_door_.size());
+    if (is_door_[e]) {
+      column_is_door[u] = true;
+      column_shade[u] = 110;  // the leaf between the jambs: the edge's metric is its width
+      const double mid = 0.5 * (edge_start_in_[e] + edge_start_in_[e + 1]);
+      if (is_double_[e] && std::abs(x - mid) < 0.5 * world_.jamb_width_in) column_shade[u] = 50;
+      continue;
+    }
+    // The jambs frame a door from outside its opening, so they lie on the wall edges next
+    // to it (wrapping around a closed ring).
+    const bool door_before = closed_ || e > 0 ? is_door_[(e + n - 1) % n] : false;
+    const bool door_after = closed_ || e + 1 < n ? is_door_[(e + 1) % n] : false;
+    if ((door_before && x - edge_start_in_[e] < world_.jamb_width_in) ||
+        (door_after && edge_start_in_[e + 1] - x < world_.jamb_width_in)) {
+      column_is_door[u] = true;
+      column_shade[u] = 50;
+    }
   }
   std::normal_distribution<double> noise(0.0, world_.image_noise_sigma);
   for (int v = 0; v < h; ++v) {

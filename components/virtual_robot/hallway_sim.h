@@ -34,7 +34,7 @@ struct SimWorldConfig {
   double hallway_width_in = 96.0;
   double door_height_in = 84.0;
   double ceiling_height_in = 108.0;
-  double jamb_width_in = 2.0;
+  double jamb_width_in = 2.0;       // door frame, outside the opening
   double image_noise_sigma = 2.0;   // grey levels
 };
 
@@ -72,6 +72,7 @@ class HallwaySim {
   SimTruth Truth() const;
   double ring_length_in() const { return length_in_; }
   const std::string& ring_id() const { return ring_id_; }
+  int edge_count() const { return static_cast<int>(is_door_.size()); }
 
  private:
   double WrapX(double x) const;
@@ -83,6 +84,7 @@ class HallwaySim {
   bool closed_ = true;
   std::vector<double> edge_start_in_;  // x where each edge starts; back() == length
   std::vector<bool> is_door_;
+  std::vector<bool> is_double_;       // double doors show a meeting stile between leaves
   double length_in_ = 0.0;
   double x_in_ = 0.0, y_in_ = 0.0, heading_rad_ = 0.0;
   double left_travel_in_ = 0.0, right_travel_in_ = 0.0, distance_in_ = 0.0;

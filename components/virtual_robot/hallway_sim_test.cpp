@@ -53,8 +53,9 @@ TEST(HallwaySimTest, DoorJambsAppearAsDarkColumnsWhereThePinholeModelPutsThem) {
   const int w = robot.image_width_px, row = robot.image_height_px / 2;
   const double f = 0.5 * w / std::tan(robot.fov_deg * M_PI / 360.0);
   const double d = 48.0;
-  const int left_jamb = static_cast<int>(0.5 * w + (100.0 + 1.0 - 118.0) * f / d);
-  const int right_jamb = static_cast<int>(0.5 * w + (136.0 - 1.0 - 118.0) * f / d);
+  // The jambs frame the 36 in opening from outside: x = 98..100 and 136..138.
+  const int left_jamb = static_cast<int>(0.5 * w + (100.0 - 1.0 - 118.0) * f / d);
+  const int right_jamb = static_cast<int>(0.5 * w + (136.0 + 1.0 - 118.0) * f / d);
   EXPECT_EQ(img[row * w + left_jamb], 50);
   EXPECT_EQ(img[row * w + right_jamb], 50);
   EXPECT_EQ(img[row * w + w / 2], 110);  // door face

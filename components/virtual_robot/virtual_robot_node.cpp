@@ -6,6 +6,7 @@
 #include <random>
 
 #include "basePubSubTypes.h"
+#include "localizationPubSubTypes.h"
 #include "runtime/endpoint.h"
 #include "sensing/robot_config.h"
 #include "sensorsPubSubTypes.h"
@@ -85,6 +86,10 @@ class VirtualRobotNode : public runtime::ProcessNode {
         ctx.participant, ctx.executor, "device/base/wheel_command",
         [this](const msgs::WheelCommand& w) { OnWheels(w); });
     sim_period_s_ = 1.0 / sim_rate_hz;
+    // The simulation knows the truth, so it is where a recovered pose is judged.
+    poses_ = std::make_unique<runtime::Reader<msgs::LocalizationPosePubSubType>>(
+        ctx.participant, ctx.executor, "localization/pose",
+        [this](const msgs::LocalizationPose& p) { OnPose(p); });
     ctx.executor.AddTimer(sim_period_s_, [this] { StepSim(); });
     ctx.executor.AddTimer(1.0 / encoder_rate_hz, [this] { PublishEncoders(); });
     ctx.executor.AddTimer(1.0 / sonar_rate_hz, [this] { PublishSonar(); });
@@ -96,8 +101,9 @@ class VirtualRobotNode : public runtime::ProcessNode {
   std::string Summary() const override {
     const SimTruth t = sim_->Truth();
     return fmt::format("{} frames, {} sonar scans served; travelled {:.1f} in, now on edge {} of "
-                       "ring '{}'",
-                       frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id());
+                       "ring '{}'{}",
+                       frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id(),
+                       pose_check_.empty() ? "; no pose recovered" : "; " + pose_check_);
   }
 
  private:
@@ -110,6 +116,25 @@ class VirtualRobotNode : public runtime::ProcessNode {
     left_ftps_ = w.left_speed_ftps();
     right_ftps_ = w.right_speed_ftps();
     last_wheels_ns_ = ctx_->now_ns();
+  }
+
+  void OnPose(const msgs::LocalizationPose& p) {
+    if (p.status() != msgs::LOCALIZATION_LOCALIZED || !pose_check_.empty()) return;
+    const SimTruth t = sim_->Truth();
+    const bool forward = left_ftps_ + right_ftps_ >= 0.0;
+    const int n = sim_->edge_count();
+    const int de = std::abs(static_cast<int>(p.best().edge_index()) - t.edge_index);
+    // The localizer names the edge the robot is in once the last door has left the view;
+    // allow the neighbouring edge for the moment of crossing a node.
+    const bool correct = p.best().ring_id() == sim_->ring_id() && p.best().forward() == forward &&
+                         (de <= 1 || de == n - 1);
+    pose_check_ = fmt::format("pose recovered after {:.1f} in: ring '{}' edge {} {}; truth ring "
+                              "'{}' edge {} {}: {}",
+                              t.distance_in - start_distance_in_, p.best().ring_id(),
+                              p.best().edge_index(), p.best().forward() ? "forward" : "backward",
+                              sim_->ring_id(), t.edge_index, forward ? "forward" : "backward",
+                              correct ? "CORRECT" : "INCORRECT");
+    ctx_->log->info("{}", pose_check_);
   }
 
   void StepSim() {
@@ -167,6 +192,9 @@ class VirtualRobotNode : public runtime::ProcessNode {
   int64_t last_wheels_ns_ = 0, last_step_ns_ = 0;
   uint32_t width_px_ = 512, height_px_ = 480;
   uint64_t frames_ = 0, scans_ = 0;
+  double start_distance_in_ = 0.0;
+  std::string pose_check_;
+  std::unique_ptr<runtime::Reader<msgs::LocalizationPosePubSubType>> poses_;
   std::unique_ptr<runtime::Writer<msgs::EncoderReadingPubSubType>> encoders_;
   std::unique_ptr<runtime::Writer<msgs::SonarEchoPubSubType>> sonar_;
   std::unique_ptr<runtime::Writer<msgs::ImagePubSubType>> camera_;

@@ -1,0 +1,71 @@
+#include "executive/mission.h"
+
+#include <algorithm>
+
+namespace stickrep::executive {
+
+const char* ToString(MissionState s) {
+  switch (s) {
+    case MissionState::kWaitingForComponents: return "WAITING_FOR_COMPONENTS";
+    case MissionState::kRecoveringPose: return "RECOVERING_POSE";
+    case MissionState::kLocalized: return "LOCALIZED";
+    case MissionState::kStoppedFault: return "STOPPED_FAULT";
+  }
+  return "?";
+}
+
+Mission::Mission(MissionConfig config) : config_(std::move(config)) {
+  message_ = "waiting for " + std::to_string(config_.required_components.size()) + " processes";
+}
+
+void Mission::Enter(MissionState s, const std::string& message) {
+  if (s == state_ && message == message_) return;
+  transitions_.push_back(std::string(ToString(state_)) + " -> " + ToString(s) + ": " + message);
+  state_ = s;
+  message_ = message;
+}
+
+void Mission::OnComponentActive(const std::string& name) {
+  active_.insert(name);
+  if (state_ != MissionState::kWaitingForComponents) return;
+  const bool all = std::all_of(config_.required_components.begin(),
+                               config_.required_components.end(),
+                               [this](const std::string& c) { return active_.count(c) > 0; });
+  if (all) Enter(MissionState::kRecoveringPose, "every process is active: travelling to recover the pose");
+}
+
+void Mission::OnComponentGone(const std::string& name, const std::string& why) {
+  active_.erase(name);
+  const bool required = std::find(config_.required_components.begin(),
+                                  config_.required_components.end(),
+                                  name) != config_.required_components.end();
+  if (required && state_ != MissionState::kStoppedFault) {
+    Enter(MissionState::kStoppedFault, "process '" + name + "' is gone (" + why + "): robot stopped");
+  }
+}
+
+void Mission::OnLocalized(const std::string& where) {
+  if (state_ == MissionState::kRecoveringPose) {
+    Enter(MissionState::kLocalized,
+          "pose recovered at " + where + "; goal execution is not built yet: holding position");
+  }
+}
+
+void Mission::OnLost() {
+  if (state_ == MissionState::kLocalized) {
+    Enter(MissionState::kRecoveringPose, "pose lost: travelling to recover it again");
+  }
+}
+
+MotionRequest Mission::Motion() const {
+  if (state_ != MissionState::kRecoveringPose) return {};
+  return {true, config_.travel_direction * config_.travel_speed_ftps};
+}
+
+std::vector<std::string> Mission::TakeTransitions() {
+  std::vector<std::string> out;
+  out.swap(transitions_);
+  return out;
+}
+
+}  // namespace stickrep::executive

@@ -1,0 +1,60 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace stickrep::executive {
+
+enum class MissionState {
+  kWaitingForComponents,
+  kRecoveringPose,
+  kLocalized,       // pose recovered; goal execution is not built yet, so the robot holds
+  kStoppedFault,
+};
+const char* ToString(MissionState s);
+
+// What the mission wants the base to do now.
+struct MotionRequest {
+  bool move = false;
+  double linear_speed_ftps = 0.0;
+};
+
+struct MissionConfig {
+  std::vector<std::string> required_components;
+  double travel_speed_ftps = 2.6;  // the base's top speed (§6.3): recovery is travel-bound
+  int travel_direction = +1;       // +1: toward the image's right; -1: the other way
+};
+
+// The executive's state machine, free of DDS: waits until every required process is
+// active, travels to recover the pose until the localizer reports LOCALIZED, and stops
+// the robot for good when a required process dies. Every transition is recorded.
+class Mission {
+ public:
+  explicit Mission(MissionConfig config);
+
+  void OnComponentActive(const std::string& name);
+  // A required process stopped or its liveliness was lost.
+  void OnComponentGone(const std::string& name, const std::string& why);
+  void OnLocalized(const std::string& where);
+  void OnLost();
+
+  MissionState state() const { return state_; }
+  const std::string& last_message() const { return message_; }
+  MotionRequest Motion() const;
+  // Transitions since the last call, oldest first.
+  std::vector<std::string> TakeTransitions();
+
+ private:
+  void Enter(MissionState s, const std::string& message);
+
+  MissionConfig config_;
+  MissionState state_ = MissionState::kWaitingForComponents;
+  std::set<std::string> active_;
+  std::string message_;
+  std::vector<std::string> transitions_;
+};
+
+}  // namespace stickrep::executive

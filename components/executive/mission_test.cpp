@@ -1,0 +1,70 @@
+#include "executive/mission.h"
+
+#include <gtest/gtest.h>
+
+namespace stickrep::executive {
+namespace {
+
+MissionConfig TwoComponents() {
+  MissionConfig c;
+  c.required_components = {"sonar", "localizer"};
+  c.travel_speed_ftps = 2.0;
+  return c;
+}
+
+TEST(MissionTest, WaitsUntilEveryRequiredProcessIsActiveBeforeMoving) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  EXPECT_EQ(m.state(), MissionState::kWaitingForComponents);
+  EXPECT_FALSE(m.Motion().move);
+  m.OnComponentActive("localizer");
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_TRUE(m.Motion().move);
+  EXPECT_DOUBLE_EQ(m.Motion().linear_speed_ftps, 2.0);
+}
+
+TEST(MissionTest, LocalizedStopsTheRobotAndSaysGoalsAreNotBuilt) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("ring a edge 3");
+  EXPECT_EQ(m.state(), MissionState::kLocalized);
+  EXPECT_FALSE(m.Motion().move);
+  EXPECT_NE(m.last_message().find("not built yet"), std::string::npos);
+}
+
+TEST(MissionTest, RequiredProcessGoneStopsTheRobotForGood) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnComponentGone("sonar", "liveliness lost");
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+  m.OnComponentActive("sonar");
+  m.OnLocalized("x");
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+  EXPECT_FALSE(m.Motion().move);
+}
+
+TEST(MissionTest, LostPoseStartsRecoveryAgain) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  m.OnLost();
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+}
+
+TEST(MissionTest, TransitionsAreRecordedInOrder) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  const auto t = m.TakeTransitions();
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].rfind("WAITING_FOR_COMPONENTS -> RECOVERING_POSE", 0), 0u);
+  EXPECT_EQ(t[1].rfind("RECOVERING_POSE -> LOCALIZED", 0), 0u);
+  EXPECT_TRUE(m.TakeTransitions().empty());
+}
+
+}  // namespace
+}  // namespace stickrep::executive

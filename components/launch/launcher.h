@@ -1,0 +1,35 @@
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "launch/launch_graph.h"
+
+namespace stickrep::launch {
+
+// How one process ended.
+struct ProcessResult {
+  std::string name;
+  int exit_code = -1;        // -1: killed by a signal (see signal)
+  int signal = 0;
+  std::string last_summary;  // the process's last "stopped: ..." log line, if any
+};
+
+struct LaunchOptions {
+  std::string bin_dir;                 // where the StickRep executables are
+  std::string config_dir;              // substituted for {config_dir}
+  std::vector<std::string> extra_args; // appended to every process (e.g. --domain 5)
+  double stop_grace_s = 10.0;          // SIGTERM, then SIGKILL after this long
+};
+
+// Starts every process of the graph as its own child process, prefixes and forwards their
+// output, ends the run when `until_exit_of` exits, the time limit passes or SIGINT/SIGTERM
+// arrives, then stops the rest with SIGTERM (SIGKILL after the grace period).
+std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOptions& options,
+                                    std::ostream& out);
+
+// The closing table: process, how it ended, its last summary line.
+void PrintResults(const std::vector<ProcessResult>& results, std::ostream& out);
+
+}  // namespace stickrep::launch
