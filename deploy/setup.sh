@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine for StickRep and builds it: installs the Debian packages that
+# are missing, configures, and builds everything into build/ (executables in build/bin).
+# Safe to run again: it installs nothing that is present and rebuilds incrementally.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake pkg-config
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools   # Fast DDS 2.9 and its IDL compiler
+  libopencv-dev libeigen3-dev libyaml-cpp-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libfmt-dev nlohmann-json3-dev libspdlog-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Two cores: build with -j2. Generated IDL code is rebuilt only when an .idl file changes.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo > build.configure.log 2>&1 ||
+  { cat build.configure.log; exit 1; }
+rm -f build.configure.log
+cmake --build build -j2

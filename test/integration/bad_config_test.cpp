@@ -1,0 +1,92 @@
+// Every process refuses bad configuration with exit code 2 and a message naming the file,
+// the line and the key; every shipped configuration starts and stops cleanly.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "integration/process_fixture.h"
+
+namespace stickrep::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Runs a process to completion (it is expected to stop by itself) and returns it.
+std::unique_ptr<launch::ChildProcess> RunToEnd(const std::vector<std::string>& argv) {
+  auto p = std::make_unique<launch::ChildProcess>(argv[0], argv);
+  EXPECT_TRUE(p->WaitExit(60.0)) << argv[0] << " did not end";
+  p->ReadLines(true);
+  return p;
+}
+
+class BadConfigTest : public ::testing::Test {
+ protected:
+  std::unique_ptr<launch::ChildProcess> RunWithConfig(const std::string& exe,
+                                                      const std::string& config_text) {
+    const std::string path = WriteTempFile(exe + ".yaml", config_text);
+    return RunToEnd({BinPath(exe), "--domain", "31", "--config", path, "--run-for", "5"});
+  }
+};
+
+TEST_F(BadConfigTest, UnknownKeyExitsWithCode2NamingFileLineAndKey) {
+  const auto p = RunWithConfig("stickrep-sonar", "sonar:\n  device: virtual\n  rate_hz: 3\n");
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("stickrep-sonar.yaml:3: key 'sonar.rate_hz': unknown key"));
+}
+
+TEST_F(BadConfigTest, MissingKeyExitsWithCode2) {
+  const auto p = RunWithConfig("stickrep-camera", "camera:\n  other: 1\n");
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("key 'camera.device': missing required key"));
+}
+
+TEST_F(BadConfigTest, WrongValueTypeExitsWithCode2) {
+  const auto p = RunWithConfig("stickrep-locomotion",
+                               "locomotion:\n  device: virtual\n  control_rate_hz: fast\n"
+                               "  command_timeout_s: 0.5\n  max_angular_rate_radps: 1\n");
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr(":3: key 'locomotion.control_rate_hz': expected a number"));
+}
+
+TEST_F(BadConfigTest, OutOfRangeValueExitsWithCode2AndStatesTheRange) {
+  const auto p = RunWithConfig("stickrep-locomotion",
+                               "locomotion:\n  device: virtual\n  control_rate_hz: 20\n"
+                               "  command_timeout_s: 0.5\n  max_angular_rate_radps: 50\n");
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr(":5: key 'locomotion.max_angular_rate_radps': value 50"));
+}
+
+TEST_F(BadConfigTest, QosProfileThatDoesNotExistExitsWithCode2) {
+  std::string qos = "qos:\n  profiles:\n    sensor:\n      reliability: best_effort\n"
+                    "      durability: volatile\n      history_depth: 5\n      deadline_s: 0\n"
+                    "      liveliness_lease_s: 0\n      publish_mode: synchronous\n  streams:\n"
+                    "    - topic: robot/sonar\n      profile: sensors\n"
+                    "      reason: newest scan supersedes the rest\n";
+  const std::string qos_path = WriteTempFile("qos.yaml", qos);
+  const std::string system_path = WriteTempFile(
+      "system.yaml", "system:\n  domain_id: 31\n  qos_file: " + qos_path + "\n  robot_file: " +
+                         ConfigPath("robot.yaml") + "\n  map_file: " + std::string(STICKREP_SOURCE_DIR) +
+                         "/maps/engineering_building_3f.yaml\n");
+  const auto p = RunToEnd({BinPath("stickrep-sonar"), "--system", system_path, "--run-for", "5"});
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("qos.yaml:12: key 'qos.streams[0].profile': no QoS profile "
+                                     "named 'sensors'"));
+}
+
+TEST_F(BadConfigTest, MalformedYamlExitsWithCode2) {
+  const auto p = RunWithConfig("stickrep-executive", "executive:\n  required_components: [a, b\n");
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("malformed YAML"));
+}
+
+TEST_F(BadConfigTest, EveryShippedConfigStartsAndStopsCleanly) {
+  for (const char* exe : {"stickrep-virtual-robot", "stickrep-sonar", "stickrep-camera",
+                          "stickrep-locomotion", "stickrep-landmark", "stickrep-localizer",
+                          "stickrep-executive"}) {
+    const auto p = RunToEnd({BinPath(exe), "--domain", "32", "--run-for", "0.5"});
+    EXPECT_EQ(p->exit_code(), 0) << exe << "\n" << p->output();
+    EXPECT_THAT(p->output(), HasSubstr("stopped:")) << exe;
+  }
+}
+
+}  // namespace
+}  // namespace stickrep::test

@@ -1,0 +1,79 @@
+#include "integration/process_fixture.h"
+
+#include <csignal>
+#include <fstream>
+#include <sstream>
+
+#include "runtime/system_config.h"
+
+namespace stickrep::test {
+
+std::string BinPath(const std::string& name) { return std::string(STICKREP_BINARY_DIR) + "/bin/" + name; }
+
+std::string ConfigPath(const std::string& name) {
+  return std::string(STICKREP_SOURCE_DIR) + "/configs/" + name;
+}
+
+std::string WriteTempFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+ProcessFixture::ProcessFixture(int domain_id) : domain_id_(domain_id) {
+  participant_ = std::make_unique<runtime::Participant>(
+      runtime::ParticipantConfig{domain_id, "stickrep-test", "", ""},
+      runtime::QosCatalog::LoadFile(ConfigPath("qos.yaml")), &discovery_);
+}
+
+ProcessFixture::~ProcessFixture() {
+  for (auto& p : processes_) {
+    if (!p->Exited()) {
+      p->Signal(SIGKILL);
+      p->WaitExit(5.0);
+    }
+  }
+}
+
+launch::ChildProcess& ProcessFixture::Start(const std::string& executable,
+                                            const std::vector<std::string>& args) {
+  std::vector<std::string> argv{BinPath(executable), "--domain", std::to_string(domain_id_)};
+  argv.insert(argv.end(), args.begin(), args.end());
+  processes_.push_back(std::make_unique<launch::ChildProcess>(executable, argv));
+  return *processes_.back();
+}
+
+bool ProcessFixture::SpinUntil(const std::function<bool()>& done, double timeout_s) {
+  const auto until = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(timeout_s));
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > until) return false;
+    executor_.SpinOnce(std::chrono::milliseconds(20));
+    for (auto& p : processes_) p->ReadLines();
+  }
+  return true;
+}
+
+void ProcessFixture::StopAllAndExpectCleanExit(double timeout_s) {
+  std::vector<launch::ChildProcess*> running;
+  for (auto& p : processes_) {
+    if (!p->Exited()) running.push_back(p.get());  // ones a test ended itself are its business
+  }
+  for (auto* p : running) p->Signal(SIGTERM);
+  for (auto* p : running) {
+    ASSERT_TRUE(p->WaitExit(timeout_s)) << p->name() << " did not stop\n" << Outputs();
+    EXPECT_EQ(p->exit_code(), 0) << p->name() << "\n" << p->output();
+  }
+}
+
+std::string ProcessFixture::Outputs() {
+  std::ostringstream out;
+  for (auto& p : processes_) {
+    p->ReadLines(true);
+    out << "---- " << p->name() << "\n" << p->output();
+  }
+  return out.str();
+}
+
+}  // namespace stickrep::test

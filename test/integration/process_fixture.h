@@ -1,0 +1,59 @@
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "launch/child_process.h"
+#include "runtime/discovery.h"
+#include "runtime/endpoint.h"
+#include "runtime/participant.h"
+
+namespace stickrep::test {
+
+// Starts StickRep processes from build/bin on one DDS domain and joins that domain with a
+// participant of its own, so a test can publish, listen, and wait for discovery and data
+// with a bounded timeout instead of sleeping.
+class ProcessFixture : public ::testing::Test {
+ protected:
+  explicit ProcessFixture(int domain_id);
+  ~ProcessFixture() override;
+
+  // Starts build/bin/<executable> with --domain and `args`.
+  launch::ChildProcess& Start(const std::string& executable,
+                              const std::vector<std::string>& args = {});
+  // Spins the test's executor until `done` holds or the timeout passes.
+  bool SpinUntil(const std::function<bool()>& done, double timeout_s);
+  // SIGTERM to every process still running; each must exit with code 0 in the timeout.
+  void StopAllAndExpectCleanExit(double timeout_s = 15.0);
+  // The output of every process so far, for failure messages.
+  std::string Outputs();
+
+  runtime::Participant& participant() { return *participant_; }
+  // Every endpoint the test's participant has discovered on the domain.
+  std::vector<runtime::TopicSummary> Topics() const {
+    return runtime::Summarise(discovery_.Endpoints());
+  }
+  runtime::Executor& executor() { return executor_; }
+  int domain_id() const { return domain_id_; }
+
+ private:
+  int domain_id_;
+  runtime::Executor executor_;
+  runtime::DiscoveryListener discovery_;
+  std::unique_ptr<runtime::Participant> participant_;
+  std::vector<std::unique_ptr<launch::ChildProcess>> processes_;
+};
+
+// build/bin/<name>
+std::string BinPath(const std::string& name);
+// configs/<name>
+std::string ConfigPath(const std::string& name);
+// Writes `text` to a fresh file under the test's temporary directory; returns its path.
+std::string WriteTempFile(const std::string& name, const std::string& text);
+
+}  // namespace stickrep::test
