@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace stickrep::localizer {
 
@@ -27,10 +28,11 @@ void EdgeAssembler::Restart() {
   open_.clear();
   sequence_.clear();
   last_jamb_in_.reset();
+  pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
   start_in_ = odometer_in_;
 }
 
-std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in) {
+std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double heading_rad) {
   std::vector<map::SensedEdge> out;
   if (!have_odometer_) {
     have_odometer_ = true;
@@ -69,7 +71,44 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in) {
     }
     Emit(t, out);
   }
+  if (!heading_ref_rad_) heading_ref_rad_ = heading_rad;
+  const double turn = std::remainder(heading_rad - *heading_ref_rad_, 2.0 * M_PI);
+  if (std::abs(turn) * 180.0 / M_PI > config_.corner_turn_deg) {
+    EmitCorner(turn, out);
+    heading_ref_rad_ = heading_rad;
+  }
   return out;
+}
+
+void EdgeAssembler::EmitCorner(double turn_rad, std::vector<map::SensedEdge>& out) {
+  // Every door behind the corner is complete: its frames are all in.
+  std::sort(open_.begin(), open_.end(), [this](const Track& a, const Track& b) {
+    return direction_ * a.along() < direction_ * b.along();
+  });
+  while (!open_.empty() && direction_ * (odometer_in_ - open_.front().along()) > 0.0) {
+    const Track t = open_.front();
+    open_.erase(open_.begin());
+    if (t.frames >= config_.min_frames) Emit(t, out);
+  }
+  open_.clear();  // anything ahead was seen across the corner, on another wall
+  // The wall up to the corner, then the node. The wall on the robot's side turns the same
+  // way as the base: a turn toward the wall (left for the camera's side, in travel terms)
+  // goes round a convex corner of the solid (90 deg), a turn away from it round a concave
+  // one (270 deg).
+  const double wall_from = last_jamb_in_ ? *last_jamb_in_ : start_in_;
+  const double wall_in = direction_ * (odometer_in_ - wall_from);
+  if (wall_in >= config_.min_wall_in) {
+    map::SensedEdge wall;
+    wall.code = map::kWallCode;
+    wall.metric_in = wall_in;
+    wall.metric_is_lower_bound = !last_jamb_in_.has_value();
+    wall.angle_deg = pending_angle_deg_;
+    pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
+    out.push_back(wall);
+    sequence_.push_back(wall);
+  }
+  pending_angle_deg_ = direction_ * turn_rad > 0.0 ? 90.0 : 270.0;
+  last_jamb_in_ = odometer_in_;
 }
 
 map::DoorClass EdgeAssembler::Track::VotedClass() const {
@@ -106,10 +145,14 @@ void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::Door
     wall.code = map::kWallCode;
     wall.metric_in = wall_in;
     wall.metric_is_lower_bound = !last_jamb_in_.has_value();
+    wall.angle_deg = pending_angle_deg_;
+    pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
     out.push_back(wall);
     sequence_.push_back(wall);
   }
   map::SensedEdge door;
+  door.angle_deg = pending_angle_deg_;
+  pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
   door.code = map::DoorCode(door_class);
   door.metric_in = direction_ * (far_jamb_in - near_jamb_in);
   out.push_back(door);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct EdgeAssemblerConfig {
   // Two doors whose facing jambs are closer than this have no wall between them
   // (Table 6.2's door-door adjacencies).
   double min_wall_in = 6.0;
+  // A heading change this large is a corner of the hallway: the node between two walls
+  // (90 or 270 degrees, Table 6.1 and 6.3), sensed by odometry as the base turns (A3).
+  double corner_turn_deg = 45.0;
 };
 
 // Assembles per-frame door sightings and the odometer into the sensed sequence of StickRep
@@ -47,8 +51,9 @@ class EdgeAssembler {
   explicit EdgeAssembler(EdgeAssemblerConfig config = {}) : config_(config) {}
 
   void AddSighting(const DoorSighting& s);
-  // Advances the odometer; returns the edges completed by this step, in travel order.
-  std::vector<map::SensedEdge> Advance(double odometer_in);
+  // Advances the odometer (and the odometry heading, radians CCW); returns the edges
+  // completed by this step, in travel order.
+  std::vector<map::SensedEdge> Advance(double odometer_in, double heading_rad = 0.0);
   // Forgets everything: the next edges start a new sequence (deterministic recovery, §6.7).
   // The robot is then inside a wall or door again, so the next wall is a lower bound.
   void Restart();
@@ -84,6 +89,9 @@ class EdgeAssembler {
   double start_in_ = 0.0;             // odometer where the current sequence began
   int direction_ = 0;                 // +1 / -1 once the robot has moved
   std::optional<double> last_jamb_in_;  // trailing jamb of the last emitted door
+  std::optional<double> heading_ref_rad_;  // heading along the current stretch of wall
+  double pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();  // node before next edge
+  void EmitCorner(double turn_rad, std::vector<map::SensedEdge>& out);
 };
 
 }  // namespace stickrep::localizer

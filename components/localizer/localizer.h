@@ -4,7 +4,10 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
 #include "localizer/edge_assembler.h"
+#include "recovery/bayes_localizer.h"
 #include "stickrep/map.h"
 #include "stickrep/sequence_matcher.h"
 
@@ -32,8 +35,17 @@ struct PoseEstimate {
   std::string message;
 };
 
+// How sensed edges are matched against the map.
+enum class MatchMethod {
+  kDeterministic,  // string matching with tolerance; discard and restart on failure (§6.7)
+  kBayes,          // discrete Bayes filter over (edge, direction) (SPEC §5)
+};
+
 struct LocalizerConfig {
+  MatchMethod method = MatchMethod::kDeterministic;
   EdgeAssemblerConfig assembler;
+  // The Bayes filter's observation model (configs/error_model_*.yaml, configs/study.yaml).
+  recovery::BayesModel bayes;
   // Metric tolerance of the wall lengths: odometry and jamb placement are not exact.
   map::MatchTolerance tolerance{0.10, 6.0, -1.0};
   int max_hypotheses = 64;
@@ -41,26 +53,33 @@ struct LocalizerConfig {
 
 // The localizer's logic, free of DDS: door sightings and the odometer in, a pose estimate
 // out. Edges are matched incrementally against every ring position in both directions
-// (§6.1); when no candidate is left the sequence is discarded and a new one started (the
-// deterministic recovery of §6.7); one candidate is the pose.
+// (§6.1). Deterministic: when no candidate is left the sequence is discarded and a new one
+// started (§6.7), and one candidate is the pose. Bayes: the posterior over (edge,
+// direction) absorbs inserted, missed and mis-sized doors, and the pose is declared once
+// the best hypothesis passes the threshold.
 class Localizer {
  public:
   Localizer(const map::Map& map, LocalizerConfig config = {});
 
   void AddSighting(const DoorSighting& s) { assembler_.AddSighting(s); }
-  // Advances the odometer; true if the estimate changed (new edges were matched).
-  bool Advance(double odometer_in);
+  // Advances the odometer and heading; true if the estimate changed (edges were matched).
+  bool Advance(double odometer_in, double heading_rad = 0.0);
   const PoseEstimate& estimate() const { return estimate_; }
   std::uint64_t restarts() const { return restarts_; }
   std::uint64_t edges_total() const { return edges_total_; }
 
  private:
   void Rebuild(double odometer_in, const std::string& message);
+  bool ExtendDeterministic(const std::vector<map::SensedEdge>& edges);
+  void ExtendBayes(const std::vector<map::SensedEdge>& edges);
+  // One hypothesis: the robot is past global edge `last` travelling `dir`.
+  Hypothesis MakeHypothesis(int last, int dir, double past_in, double probability) const;
 
   const map::Map& map_;
   LocalizerConfig config_;
   map::MatchIndex index_;
   map::SequenceMatcher matcher_;
+  std::unique_ptr<recovery::BayesLocalizer> bayes_;
   EdgeAssembler assembler_;
   PoseEstimate estimate_;
   std::uint64_t restarts_ = 0;

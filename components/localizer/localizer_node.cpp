@@ -8,6 +8,8 @@
 #include "localizationPubSubTypes.h"
 #include "localizer/localizer.h"
 #include "perceptionPubSubTypes.h"
+#include "recovery/error_model.h"
+#include "runtime/system_config.h"
 #include "runtime/endpoint.h"
 #include "stickrep/map_io.h"
 
@@ -66,9 +68,18 @@ class LocalizerNode : public runtime::ProcessNode {
     ctx_ = &ctx;
     const StrictYaml& c = ctx.config;
     LocalizerConfig config;
+    const std::string method = c.Get<std::string>("method");
+    std::string error_model_file, study_file;
+    if (method == "bayes") {
+      config.method = MatchMethod::kBayes;
+    } else if (method != "deterministic") {
+      c.Fail("method", "'" + method + "' is not one of: deterministic, bayes");
+    }
+    error_model_file = runtime::ResolvePath(c.Get<std::string>("error_model_file"), c.file());
+    study_file = runtime::ResolvePath(c.Get<std::string>("study_file"), c.file());
     config.tolerance.metric_rel = c.Get<double>("metric_tolerance_rel", 0.0, 1.0);
     config.tolerance.metric_abs_in = c.Get<double>("metric_tolerance_abs_in", 0.0, 120.0, "in");
-    config.tolerance.angle_deg = -1.0;  // adjacency angles are not sensed yet
+    config.tolerance.angle_deg = 20.0;  // corners are sensed as turns of the odometry heading
     config.assembler.same_door_in = c.Get<double>("same_door_in", 1.0, 60.0, "in");
     config.assembler.out_of_view_in = c.Get<double>("out_of_view_in", 6.0, 240.0, "in");
     config.assembler.min_frames = c.Get<int>("min_frames", 1, 20);
@@ -77,6 +88,16 @@ class LocalizerNode : public runtime::ProcessNode {
     const double publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
     c.Finish();
     map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
+    if (config.method == MatchMethod::kBayes) {
+      // The observation model: the landmark pipeline's confusion and the sensing noise.
+      const recovery::ErrorModel errors = recovery::LoadErrorModel(error_model_file);
+      const recovery::StudyConfig study = recovery::LoadStudyConfig(study_file);
+      const map::MatchIndex index(*map_);
+      config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise,
+                                          study.bayes};
+      ctx.log->info("Bayes matcher: error model {} ({}), threshold {}", error_model_file,
+                    errors.source, study.bayes.threshold);
+    }
     localizer_ = std::make_unique<Localizer>(*map_, config);
     ctx.log->info("map '{}': {} rings, {} edges", map_->info().name, map_->RingCount(),
                   map_->EdgeCount());
@@ -134,7 +155,11 @@ class LocalizerNode : public runtime::ProcessNode {
       ctx_->counters.Drop("robot/odometry", "non-finite distance");
       return;
     }
-    if (localizer_->Advance(o.distance_in())) {
+    if (!std::isfinite(o.pose().heading_rad())) {
+      ctx_->counters.Drop("robot/odometry", "non-finite heading");
+      return;
+    }
+    if (localizer_->Advance(o.distance_in(), o.pose().heading_rad())) {
       const PoseEstimate& e = localizer_->estimate();
       ctx_->log->info("{}: {} ({} edges sensed)", ToString(e.status), e.message, e.edges_sensed);
       PublishPose();

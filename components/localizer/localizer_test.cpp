@@ -107,6 +107,26 @@ TEST(EdgeAssemblerTest, TwoAdjacentLeavesOfTheSameClassBecomeOneDoubleDoor) {
   EXPECT_THAT(edges[1].metric_in, DoubleNear(72.0, 1e-9));
 }
 
+TEST(EdgeAssemblerTest, TurnOfTheHeadingEndsTheWallAtACornerWithItsAngle) {
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  // 100 in of wall, a left turn (toward the camera's wall: a convex corner), 80 in, a door.
+  for (double odo = 0.0; odo <= 300.0; odo += 6.0) {
+    const double heading = odo >= 102.0 ? M_PI / 2.0 : 0.0;
+    if (std::abs(odo - 200.0) < 12.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.9, 200.0});
+    for (const auto& e : a.Advance(odo, heading)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 3u);
+  EXPECT_EQ(edges[0].code, map::kWallCode);
+  EXPECT_TRUE(edges[0].metric_is_lower_bound);
+  EXPECT_THAT(edges[0].metric_in, DoubleNear(102.0, 1e-9));
+  EXPECT_EQ(edges[1].code, map::kWallCode);
+  EXPECT_FALSE(edges[1].metric_is_lower_bound);
+  EXPECT_DOUBLE_EQ(edges[1].angle_deg, 90.0);
+  EXPECT_THAT(edges[1].metric_in, DoubleNear(182.0 - 102.0, 1e-9));
+  EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k36));
+}
+
 TEST(EdgeAssemblerTest, DoorSeenInOneFrameOnlyIsDroppedAsSpurious) {
   EdgeAssembler a;
   a.Advance(0.0);
@@ -147,6 +167,20 @@ TEST(LocalizerTest, ExactSightingsBackwardRecoverTheReverseDirection) {
   Localizer loc(map);
   ASSERT_GT(DriveUntilLocalized(map, loc, 900.0, -1, 3000.0), 0.0);
   EXPECT_EQ(loc.estimate().hypotheses.front().dir, -1);
+}
+
+TEST(LocalizerTest, BayesMethodRecoversTheTruePoseFromExactSightings) {
+  const map::Map map = MakeMap(DistinctHall());
+  LocalizerConfig config;
+  config.method = MatchMethod::kBayes;
+  config.bayes.confusion = recovery::Resolve(
+      recovery::LoadErrorModel(std::string(STICKREP_SOURCE_DIR) + "/configs/error_model_paper.yaml"),
+      map::MatchIndex(map));
+  Localizer loc(map, config);
+  ASSERT_GT(DriveUntilLocalized(map, loc, 10.0, +1, 6000.0), 0.0);
+  const Hypothesis& h = loc.estimate().hypotheses.front();
+  EXPECT_EQ(h.dir, +1);
+  EXPECT_GE(loc.estimate().confidence, config.bayes.settings.threshold);
 }
 
 TEST(LocalizerTest, SequenceThatFitsNowhereIsDiscardedAndRecoveryStartsAgain) {
