@@ -49,6 +49,7 @@ const char* Name(msgs::MissionState s) {
     case msgs::MISSION_WAITING_FOR_COMPONENTS: return "WAITING_FOR_COMPONENTS";
     case msgs::MISSION_ALIGNING: return "ALIGNING";
     case msgs::MISSION_RECOVERING_POSE: return "RECOVERING_POSE";
+    case msgs::MISSION_LOCALIZED: return "LOCALIZED";
     case msgs::MISSION_EXECUTING_GOAL: return "EXECUTING_GOAL";
     case msgs::MISSION_GOAL_REACHED: return "GOAL_REACHED";
     case msgs::MISSION_STOPPED_FAULT: return "STOPPED_FAULT";

@@ -2,10 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
+#include <optional>
 
 #include "basePubSubTypes.h"
 #include "executive/mission.h"
+#include "executive/route.h"
+#include "stickrep/map_io.h"
 #include "localizationPubSubTypes.h"
 #include "missionPubSubTypes.h"
 #include "runtime/endpoint.h"
@@ -19,7 +23,9 @@ msgs::MissionState ToMsg(MissionState s) {
   switch (s) {
     case MissionState::kWaitingForComponents: return msgs::MISSION_WAITING_FOR_COMPONENTS;
     case MissionState::kRecoveringPose: return msgs::MISSION_RECOVERING_POSE;
-    case MissionState::kLocalized: return msgs::MISSION_GOAL_REACHED;
+    case MissionState::kLocalized: return msgs::MISSION_LOCALIZED;
+    case MissionState::kExecutingGoal: return msgs::MISSION_EXECUTING_GOAL;
+    case MissionState::kGoalReached: return msgs::MISSION_GOAL_REACHED;
     case MissionState::kStoppedFault: return msgs::MISSION_STOPPED_FAULT;
   }
   return msgs::MISSION_STOPPED_FAULT;
@@ -42,6 +48,20 @@ class ExecutiveNode : public runtime::ProcessNode {
     exit_when_localized_ = c.Get<bool>("exit_when_localized");
     c.Finish();
     mission_ = std::make_unique<Mission>(mission);
+    travel_direction_ = mission.travel_direction;
+    map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
+    planner_ = std::make_unique<RoutePlanner>(*map_);
+    odometry_ = std::make_unique<runtime::Reader<msgs::OdometryPubSubType>>(
+        ctx.participant, ctx.executor, "robot/odometry", [this](const msgs::Odometry& o) {
+          ctx_->counters.CountIn();
+          if (!std::isfinite(o.distance_in())) {
+            ctx_->counters.Drop("robot/odometry", "non-finite distance");
+            return;
+          }
+          odometer_in_ = o.distance_in();
+          mission_->OnOdometer(odometer_in_);
+          Report();
+        });
 
     commands_ = std::make_unique<runtime::Writer<msgs::MotionCommandPubSubType>>(
         ctx.participant, "robot/motion/command");
@@ -95,10 +115,16 @@ class ExecutiveNode : public runtime::ProcessNode {
   void OnPose(const msgs::LocalizationPose& p) {
     ctx_->counters.CountIn();
     if (p.status() == msgs::LOCALIZATION_LOCALIZED) {
+      const int ring = map_->FindRing(p.best().ring_id());
+      if (ring >= 0) {
+        pose_ = MapPose{ring, static_cast<int>(p.best().edge_index()),
+                        p.best().forward() ? +1 : -1, p.best().offset_in()};
+      }
       mission_->OnLocalized(fmt::format("ring '{}' edge {} ({})", p.best().ring_id(),
                                         p.best().edge_index(),
                                         p.best().forward() ? "forward" : "backward"));
     } else if (p.status() == msgs::LOCALIZATION_LOST) {
+      pose_.reset();
       mission_->OnLost();
     }
     Report();
@@ -106,9 +132,25 @@ class ExecutiveNode : public runtime::ProcessNode {
 
   void OnGoal(const msgs::MissionGoal& g) {
     ctx_->counters.CountIn();
-    PublishStatus(fmt::format("goal '{}' ({}) refused: goal execution is not built yet",
-                              g.goal_id(), g.target()),
-                  g.goal_id());
+    const auto refuse = [&](const std::string& why) {
+      ctx_->log->warn("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), why);
+      PublishStatus(fmt::format("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), why),
+                    g.goal_id());
+    };
+    if (const auto why = mission_->CanTakeGoal()) return refuse(*why);
+    if (!pose_) return refuse("the pose is not known yet");
+    const RouteResult route = planner_->Plan(*pose_, g.target());
+    if (!route) return refuse(route.error);
+    if (!route.route->crossings.empty()) {
+      return refuse("the route crosses into another hallway, and turning at a join is not "
+                    "built yet");
+    }
+    // Keep going means the direction the base travelled while localizing.
+    const int sign = route.route->initial_travel_sign >= 0 ? travel_direction_ : -travel_direction_;
+    mission_->StartGoal(GoalPlan{g.goal_id(), planner_->Describe(*route.route), sign,
+                                 route.route->distance_in},
+                        odometer_in_);
+    Report();
   }
 
   void Tick() {
@@ -149,6 +191,12 @@ class ExecutiveNode : public runtime::ProcessNode {
 
   runtime::NodeContext* ctx_ = nullptr;
   std::unique_ptr<Mission> mission_;
+  std::unique_ptr<map::Map> map_;
+  std::unique_ptr<RoutePlanner> planner_;
+  std::optional<MapPose> pose_;
+  double odometer_in_ = 0.0;
+  int travel_direction_ = 1;
+  std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;
   double heartbeat_timeout_s_ = 3.0;
   bool exit_when_localized_ = false;
   std::map<std::string, int64_t> last_heartbeat_ns_;

@@ -9,6 +9,8 @@ const char* ToString(MissionState s) {
     case MissionState::kWaitingForComponents: return "WAITING_FOR_COMPONENTS";
     case MissionState::kRecoveringPose: return "RECOVERING_POSE";
     case MissionState::kLocalized: return "LOCALIZED";
+    case MissionState::kExecutingGoal: return "EXECUTING_GOAL";
+    case MissionState::kGoalReached: return "GOAL_REACHED";
     case MissionState::kStoppedFault: return "STOPPED_FAULT";
   }
   return "?";
@@ -46,18 +48,47 @@ void Mission::OnComponentGone(const std::string& name, const std::string& why) {
 
 void Mission::OnLocalized(const std::string& where) {
   if (state_ == MissionState::kRecoveringPose) {
-    Enter(MissionState::kLocalized,
-          "pose recovered at " + where + "; goal execution is not built yet: holding position");
+    Enter(MissionState::kLocalized, "pose recovered at " + where + ": holding, ready for a goal");
   }
 }
 
 void Mission::OnLost() {
-  if (state_ == MissionState::kLocalized) {
+  if (state_ == MissionState::kLocalized || state_ == MissionState::kExecutingGoal ||
+      state_ == MissionState::kGoalReached) {
     Enter(MissionState::kRecoveringPose, "pose lost: travelling to recover it again");
   }
 }
 
+std::optional<std::string> Mission::CanTakeGoal() const {
+  switch (state_) {
+    case MissionState::kLocalized:
+    case MissionState::kGoalReached:
+    case MissionState::kExecutingGoal:
+      return std::nullopt;
+    case MissionState::kStoppedFault:
+      return "the robot is stopped after a fault";
+    default:
+      return "the pose is not known yet";
+  }
+}
+
+void Mission::StartGoal(const GoalPlan& plan, double odometer_in) {
+  goal_ = plan;
+  goal_odometer_in_ = odometer_in + plan.travel_sign * plan.distance_in;
+  Enter(MissionState::kExecutingGoal, "goal '" + plan.goal_id + "': " + plan.description);
+}
+
+void Mission::OnOdometer(double odometer_in) {
+  if (state_ == MissionState::kExecutingGoal &&
+      goal_.travel_sign * (odometer_in - goal_odometer_in_) >= 0.0) {
+    Enter(MissionState::kGoalReached, "goal '" + goal_.goal_id + "' reached");
+  }
+}
+
 MotionRequest Mission::Motion() const {
+  if (state_ == MissionState::kExecutingGoal) {
+    return {true, goal_.travel_sign * config_.travel_speed_ftps};
+  }
   if (state_ != MissionState::kRecoveringPose) return {};
   return {true, config_.travel_direction * config_.travel_speed_ftps};
 }

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -11,7 +12,9 @@ namespace stickrep::executive {
 enum class MissionState {
   kWaitingForComponents,
   kRecoveringPose,
-  kLocalized,       // pose recovered; goal execution is not built yet, so the robot holds
+  kLocalized,       // pose recovered; holding until a goal arrives
+  kExecutingGoal,   // travelling along the ring to the goal
+  kGoalReached,
   kStoppedFault,
 };
 const char* ToString(MissionState s);
@@ -20,6 +23,14 @@ const char* ToString(MissionState s);
 struct MotionRequest {
   bool move = false;
   double linear_speed_ftps = 0.0;
+};
+
+// A goal the route planner has turned into travel along the current ring.
+struct GoalPlan {
+  std::string goal_id;
+  std::string description;
+  int travel_sign = +1;      // +1: the base's forward direction; -1: backward
+  double distance_in = 0.0;  // along the hallway
 };
 
 struct MissionConfig {
@@ -40,6 +51,13 @@ class Mission {
   void OnComponentGone(const std::string& name, const std::string& why);
   void OnLocalized(const std::string& where);
   void OnLost();
+  // Why a goal cannot be taken now (nothing if it can).
+  std::optional<std::string> CanTakeGoal() const;
+  // Starts travelling to the goal; the odometer is the base's current reading.
+  void StartGoal(const GoalPlan& plan, double odometer_in);
+  // Progress toward the goal.
+  void OnOdometer(double odometer_in);
+  const std::string& goal_id() const { return goal_.goal_id; }
 
   MissionState state() const { return state_; }
   const std::string& last_message() const { return message_; }
@@ -52,6 +70,8 @@ class Mission {
 
   MissionConfig config_;
   MissionState state_ = MissionState::kWaitingForComponents;
+  GoalPlan goal_;
+  double goal_odometer_in_ = 0.0;  // odometer reading at which the goal is reached
   std::set<std::string> active_;
   std::string message_;
   std::vector<std::string> transitions_;

@@ -23,14 +23,37 @@ TEST(MissionTest, WaitsUntilEveryRequiredProcessIsActiveBeforeMoving) {
   EXPECT_DOUBLE_EQ(m.Motion().linear_speed_ftps, 2.0);
 }
 
-TEST(MissionTest, LocalizedStopsTheRobotAndSaysGoalsAreNotBuilt) {
+TEST(MissionTest, LocalizedStopsTheRobotUntilAGoalArrives) {
   Mission m(TwoComponents());
   m.OnComponentActive("sonar");
   m.OnComponentActive("localizer");
   m.OnLocalized("ring a edge 3");
   EXPECT_EQ(m.state(), MissionState::kLocalized);
   EXPECT_FALSE(m.Motion().move);
-  EXPECT_NE(m.last_message().find("not built yet"), std::string::npos);
+  EXPECT_FALSE(m.CanTakeGoal().has_value());
+}
+
+TEST(MissionTest, GoalBeforeThePoseIsKnownIsRefusedWithTheReason) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  ASSERT_TRUE(m.CanTakeGoal().has_value());
+  EXPECT_EQ(*m.CanTakeGoal(), "the pose is not known yet");
+}
+
+TEST(MissionTest, GoalIsDrivenToByOdometryAndThenTheRobotStops) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  m.StartGoal(GoalPlan{"g1", "back 100 in", -1, 100.0}, 500.0);
+  EXPECT_EQ(m.state(), MissionState::kExecutingGoal);
+  EXPECT_DOUBLE_EQ(m.Motion().linear_speed_ftps, -2.0);
+  m.OnOdometer(450.0);
+  EXPECT_EQ(m.state(), MissionState::kExecutingGoal);
+  m.OnOdometer(399.0);
+  EXPECT_EQ(m.state(), MissionState::kGoalReached);
+  EXPECT_FALSE(m.Motion().move);
 }
 
 TEST(MissionTest, RequiredProcessGoneStopsTheRobotForGood) {

@@ -23,7 +23,8 @@ Localizer::Localizer(const map::Map& map, LocalizerConfig config)
       config_(config),
       index_(map),
       matcher_(index_, config.tolerance),
-      assembler_(config.assembler) {
+      assembler_(config.assembler),
+      tracker_(map, config.tracker) {
   if (config_.method == MatchMethod::kBayes) {
     bayes_ = std::make_unique<recovery::BayesLocalizer>(index_, config_.bayes);
   }
@@ -32,6 +33,50 @@ Localizer::Localizer(const map::Map& map, LocalizerConfig config)
 
 bool Localizer::Advance(double odometer_in, double heading_rad) {
   const std::vector<map::SensedEdge> edges = assembler_.Advance(odometer_in, heading_rad);
+  if (tracker_.status() == TrackStatus::kTracking) return Track(odometer_in, edges);
+  const bool changed = Recover(odometer_in, edges);
+  if (estimate_.status == Status::kLocalized) StartTracking(odometer_in);
+  return changed;
+}
+
+void Localizer::StartTracking(double odometer_in) {
+  const Hypothesis& h = estimate_.hypotheses.front();
+  tracker_.Start(TrackedPose{h.ring, h.edge, h.dir, h.offset_in}, odometer_in,
+                 assembler_.travel_direction());
+}
+
+void Localizer::ResetRecovery() {
+  matcher_.Reset();
+  if (bayes_) bayes_->Reset();
+  assembler_.Restart();
+}
+
+bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& edges) {
+  edges_total_ += edges.size();
+  tracker_.Advance(odometer_in);
+  if (!edges.empty() && assembler_.last_edge_end_in()) {
+    tracker_.OnEdges(edges, *assembler_.last_edge_end_in());
+  }
+  if (tracker_.status() == TrackStatus::kLost) {
+    // Kidnapped, or the odometry drifted beyond repair: recover from scratch.
+    losses_++;
+    ResetRecovery();
+    estimate_ = PoseEstimate{};
+    estimate_.status = Status::kLost;
+    estimate_.message = "pose lost (" + tracker_.message() + "): recovering again";
+    was_localized_ = false;
+    return true;
+  }
+  const TrackedPose p = tracker_.pose();
+  estimate_.hypotheses = {MakeHypothesisAt(p.ring, p.edge, p.dir, p.offset_in, 1.0)};
+  estimate_.candidates = 1;
+  estimate_.confidence = 1.0;
+  estimate_.status = Status::kLocalized;
+  estimate_.message = tracker_.message();
+  return !edges.empty();
+}
+
+bool Localizer::Recover(double odometer_in, const std::vector<map::SensedEdge>& edges) {
   if (edges.empty()) {
     if (!estimate_.hypotheses.empty()) Rebuild(odometer_in, estimate_.message);
     return false;
@@ -112,15 +157,21 @@ void Localizer::Rebuild(double odometer_in, const std::string& message) {
 
 Hypothesis Localizer::MakeHypothesis(int last, int dir, double past_in,
                                      double probability) const {
-  Hypothesis h;
-  // The newest sensed edge is a door that has left the view: the robot is in the next edge.
+  // The newest sensed edge has left the view: the robot is in the next edge.
   const int next = index_.Step(last, dir);
   const int g = next >= 0 ? next : last;
-  h.ring = index_.RingOf(g);
-  h.edge = g - index_.RingOffset(h.ring);
+  const int ring = index_.RingOf(g);
+  return MakeHypothesisAt(ring, g - index_.RingOffset(ring), dir, past_in, probability);
+}
+
+Hypothesis Localizer::MakeHypothesisAt(int ring_index, int edge, int dir, double offset_in,
+                                       double probability) const {
+  Hypothesis h;
+  h.ring = ring_index;
+  h.edge = edge;
   h.dir = dir;
   const map::Ring& ring = map_.ring(h.ring);
-  h.offset_in = std::min(past_in, ring.edges[h.edge].metric_in);
+  h.offset_in = std::clamp(offset_in, 0.0, ring.edges[h.edge].metric_in);
   // Node e starts edge e in ring order and carries that edge's heading (gamma).
   const map::Node& start = ring.nodes[h.edge];
   const map::Node& end = ring.nodes[(h.edge + 1) % ring.NodeCount()];

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "localizer/edge_assembler.h"
+#include "localizer/pose_tracker.h"
 #include "recovery/bayes_localizer.h"
 #include "stickrep/map.h"
 #include "stickrep/sequence_matcher.h"
@@ -49,6 +50,8 @@ struct LocalizerConfig {
   // Metric tolerance of the wall lengths: odometry and jamb placement are not exact.
   map::MatchTolerance tolerance{0.10, 6.0, -1.0};
   int max_hypotheses = 64;
+  // Pose maintenance once localized (§3.3).
+  PoseTrackerConfig tracker;
 };
 
 // The localizer's logic, free of DDS: door sightings and the odometer in, a pose estimate
@@ -56,7 +59,9 @@ struct LocalizerConfig {
 // (§6.1). Deterministic: when no candidate is left the sequence is discarded and a new one
 // started (§6.7), and one candidate is the pose. Bayes: the posterior over (edge,
 // direction) absorbs inserted, missed and mis-sized doors, and the pose is declared once
-// the best hypothesis passes the threshold.
+// the best hypothesis passes the threshold. Once localized, the pose is maintained by
+// confirming each anticipated edge (§3.3); too many misses — a kidnapped robot — turn the
+// status to LOST and a full recovery starts.
 class Localizer {
  public:
   Localizer(const map::Map& map, LocalizerConfig config = {});
@@ -66,6 +71,7 @@ class Localizer {
   bool Advance(double odometer_in, double heading_rad = 0.0);
   const PoseEstimate& estimate() const { return estimate_; }
   std::uint64_t restarts() const { return restarts_; }
+  std::uint64_t losses() const { return losses_; }
   std::uint64_t edges_total() const { return edges_total_; }
 
  private:
@@ -74,6 +80,15 @@ class Localizer {
   void ExtendBayes(const std::vector<map::SensedEdge>& edges);
   // One hypothesis: the robot is past global edge `last` travelling `dir`.
   Hypothesis MakeHypothesis(int last, int dir, double past_in, double probability) const;
+  // One hypothesis: `offset_in` into ring-local edge `edge` of ring `ring`.
+  Hypothesis MakeHypothesisAt(int ring, int edge, int dir, double offset_in,
+                              double probability) const;
+  // Maintenance after localization; true if the estimate changed.
+  bool Track(double odometer_in, const std::vector<map::SensedEdge>& edges);
+  // Recovery from no knowledge; true if the estimate changed.
+  bool Recover(double odometer_in, const std::vector<map::SensedEdge>& edges);
+  void StartTracking(double odometer_in);
+  void ResetRecovery();
 
   const map::Map& map_;
   LocalizerConfig config_;
@@ -82,7 +97,9 @@ class Localizer {
   std::unique_ptr<recovery::BayesLocalizer> bayes_;
   EdgeAssembler assembler_;
   PoseEstimate estimate_;
+  PoseTracker tracker_;
   std::uint64_t restarts_ = 0;
+  std::uint64_t losses_ = 0;
   std::uint64_t edges_total_ = 0;
   bool was_localized_ = false;
 };

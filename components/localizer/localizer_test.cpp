@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace stickrep::localizer {
@@ -52,6 +53,33 @@ double DriveUntilLocalized(const map::Map& map, Localizer& loc, double start_in,
     if (loc.estimate().status == Status::kLocalized) return travel;
   }
   return -1.0;
+}
+
+// Drives forward from odometer `odo_from` to `odo_to` with the optical axis at ring position
+// `axis_from` at the start; returns every status the localizer reported on the way.
+std::vector<Status> DriveSegment(const map::Map& map, Localizer& loc, double axis_from,
+                                 double odo_from, double odo_to, double view_in = 14.0) {
+  const map::Ring& ring = map.ring(0);
+  double length = 0.0;
+  std::vector<double> centre;
+  for (const auto& e : ring.edges) {
+    centre.push_back(length + e.metric_in / 2.0);
+    length += e.metric_in;
+  }
+  std::vector<Status> statuses;
+  for (double odo = odo_from; odo <= odo_to; odo += 6.24) {
+    const double axis = axis_from + (odo - odo_from);
+    for (std::size_t i = 0; i < ring.edges.size(); ++i) {
+      if (!ring.edges[i].IsDoor()) continue;
+      // The ring is closed: the door is seen on every lap.
+      const double offset = std::remainder(centre[i] - axis, length);
+      if (std::abs(offset) <= view_in) {
+        loc.AddSighting({*ring.edges[i].door_class, ring.edges[i].metric_in, 0.9, odo + offset});
+      }
+    }
+    if (loc.Advance(odo)) statuses.push_back(loc.estimate().status);
+  }
+  return statuses;
 }
 
 std::vector<map::Edge> DistinctHall() {
@@ -181,6 +209,29 @@ TEST(LocalizerTest, BayesMethodRecoversTheTruePoseFromExactSightings) {
   const Hypothesis& h = loc.estimate().hypotheses.front();
   EXPECT_EQ(h.dir, +1);
   EXPECT_GE(loc.estimate().confidence, config.bayes.settings.threshold);
+}
+
+TEST(LocalizerTest, PoseIsMaintainedEdgeByEdgeAfterLocalization) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map);
+  const auto statuses = DriveSegment(map, loc, 10.0, 0.0, 2400.0);
+  ASSERT_FALSE(statuses.empty());
+  EXPECT_EQ(statuses.back(), Status::kLocalized);
+  EXPECT_EQ(loc.losses(), 0u);
+  EXPECT_EQ(std::count(statuses.begin(), statuses.end(), Status::kLost), 0);
+}
+
+TEST(LocalizerTest, KidnappedRobotIsDetectedAsLostAndRecoversAgain) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map);
+  DriveSegment(map, loc, 10.0, 0.0, 1400.0);
+  ASSERT_EQ(loc.estimate().status, Status::kLocalized);
+  // Teleported half a lap away: the anticipated edges stop coming.
+  const auto after = DriveSegment(map, loc, 10.0 + 1400.0 + 463.0, 1406.24, 6000.0);
+  EXPECT_GE(loc.losses(), 1u);
+  EXPECT_NE(std::find(after.begin(), after.end(), Status::kLost), after.end());
+  EXPECT_EQ(after.back(), Status::kLocalized) << loc.estimate().message << " restarts "
+                                             << loc.restarts() << " edges " << loc.edges_total();
 }
 
 TEST(LocalizerTest, SequenceThatFitsNowhereIsDiscardedAndRecoveryStartsAgain) {

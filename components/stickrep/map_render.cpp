@@ -69,6 +69,24 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
                   0.45, cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
     }
   }
+  auto px_at = [&](double x_in, double y_in) {
+    return cv::Point(static_cast<int>(std::lround(margin + (x_in - min_x) * scale)),
+                     static_cast<int>(std::lround(height - legend - margin - (y_in - min_y) * scale)));
+  };
+  for (const PathOverlay& path_overlay : options.paths) {
+    for (size_t i = 1; i < path_overlay.points_in.size(); ++i) {
+      const auto& a = path_overlay.points_in[i - 1];
+      const auto& b = path_overlay.points_in[i];
+      cv::line(img, px_at(a.first, a.second), px_at(b.first, b.second), cv::Scalar(0, 0, 220), 2,
+               cv::LINE_AA);
+    }
+  }
+  for (const MarkerOverlay& m : options.markers) {
+    const cv::Point p = px_at(m.x_in, m.y_in);
+    cv::circle(img, p, 7, cv::Scalar(0, 140, 0), cv::FILLED, cv::LINE_AA);
+    cv::putText(img, m.label, {p.x + 10, p.y - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(0, 100, 0), 1, cv::LINE_AA);
+  }
   // Legend and scale bar.
   int x = margin;
   const int y = height - legend / 2;

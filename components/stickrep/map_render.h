@@ -5,14 +5,29 @@
 // in no part of the map library itself.
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "stickrep/map.h"
 
 namespace stickrep::map {
 
+// Something drawn over the map in building coordinates (inches): a robot's path, or a
+// marked moment such as the start or the recovery of the pose.
+struct PathOverlay {
+  std::vector<std::pair<double, double>> points_in;  // (x, y)
+};
+struct MarkerOverlay {
+  double x_in = 0.0;
+  double y_in = 0.0;
+  std::string label;
+};
+
 struct RenderOptions {
   int width_px = 1800;  // image width; the height follows the map's aspect ratio
   bool label_rings = true;
+  std::vector<PathOverlay> paths;      // drawn in red
+  std::vector<MarkerOverlay> markers;  // drawn as labelled dots
 };
 
 // Throws std::runtime_error if the file cannot be written.

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+
+#include "common/units.h"
 #include <random>
 
 #include "basePubSubTypes.h"
@@ -11,6 +13,7 @@
 #include "sensing/robot_config.h"
 #include "sensorsPubSubTypes.h"
 #include "stickrep/map_io.h"
+#include "stickrep/map_render.h"
 #include "systemPubSubTypes.h"
 #include "virtual_robot/world_sim.h"
 
@@ -44,10 +47,14 @@ class VirtualRobotNode : public runtime::ProcessNode {
     const double sonar_rate_hz = c.Get<double>("sonar_rate_hz", 0.5, 50.0, "Hz");
     const double camera_rate_hz = c.Get<double>("camera_rate_hz", 0.5, 60.0, "Hz");
     wheel_timeout_s_ = c.Get<double>("wheel_command_timeout_s", 0.05, 5.0, "s");
+    kidnap_after_s_ = c.Get<double>("kidnap_after_localized_s", -1.0, 3600.0, "s");
+    kidnap_jump_in_ = c.Get<double>("kidnap_jump_in", -1e6, 1e6, "in");
+    summary_png_ = c.Get<std::string>("summary_png");
     c.Finish();
 
     const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
-    const map::Map map = map::LoadMap(ctx.system.map_file);
+    map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
+    const map::Map& map = *map_;
     const int ring = world.ring_id.empty() ? 0 : map.FindRing(world.ring_id);
     if (ring < 0) c.Fail("ring_id", "no ring '" + world.ring_id + "' in " + ctx.system.map_file);
     if (start_in < 0.0) {
@@ -58,6 +65,10 @@ class VirtualRobotNode : public runtime::ProcessNode {
     }
     sim_ = std::make_unique<WorldSim>(map, robot, world, start_in, seed);
     const SimTruth t = sim_->Truth();
+    start_check_ = fmt::format("start ring '{}' edge {} + {:.1f} in (seed {})", sim_->ring_id(),
+                               t.edge_index, t.offset_in, seed);
+    path_.push_back({t.X_WR.x_in, t.X_WR.y_in});
+    markers_.push_back({t.X_WR.x_in, t.X_WR.y_in, "start"});
     ctx.log->info("simulating ring '{}' of {} ({:.0f} in), {:.0f} in wide hallway, real-time "
                   "factor {:g}; seed {}; start {:.1f} in = edge {} + {:.1f} in",
                   sim_->ring_id(), map.info().name, sim_->ring_length_in(),
@@ -96,12 +107,27 @@ class VirtualRobotNode : public runtime::ProcessNode {
     return start_wall_ns_ + static_cast<int64_t>((ctx_->now_ns() - start_wall_ns_) * rtf_);
   }
 
+  void Deactivate() override {
+    if (summary_png_.empty()) return;
+    map::RenderOptions options;
+    options.paths.push_back(map::PathOverlay{path_});
+    options.markers = markers_;
+    try {
+      map::RenderMapPng(*map_, summary_png_, options);
+      ctx_->log->info("wrote the map with the path to {}", summary_png_);
+    } catch (const std::exception& e) {
+      ctx_->log->warn("could not write {}: {}", summary_png_, e.what());
+    }
+  }
+
   std::string Summary() const override {
     const SimTruth t = sim_->Truth();
-    return fmt::format("{} frames, {} sonar scans served; travelled {:.1f} in, now on edge {} of "
-                       "ring '{}'{}",
-                       frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id(),
-                       pose_check_.empty() ? "; no pose recovered" : "; " + pose_check_);
+    std::string checks;
+    for (const std::string& c : pose_checks_) checks += "; " + c;
+    return fmt::format("{}; {} frames, {} sonar scans served; travelled {:.1f} in, now on edge "
+                       "{} of ring '{}'{}",
+                       start_check_, frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id(),
+                       checks.empty() ? "; no pose recovered" : checks);
   }
 
  private:
@@ -117,7 +143,12 @@ class VirtualRobotNode : public runtime::ProcessNode {
   }
 
   void OnPose(const msgs::LocalizationPose& p) {
-    if (p.status() != msgs::LOCALIZATION_LOCALIZED || !pose_check_.empty()) return;
+    if (p.status() != msgs::LOCALIZATION_LOCALIZED) {
+      judged_ = false;  // the next LOCALIZED is a new recovery (after LOST)
+      return;
+    }
+    if (judged_) return;
+    judged_ = true;
     const SimTruth t = sim_->Truth();
     const bool forward = t.forward_in_ring;
     const int n = sim_->edge_count();
@@ -126,13 +157,41 @@ class VirtualRobotNode : public runtime::ProcessNode {
     // allow the neighbouring edge for the moment of crossing a node.
     const bool correct = p.best().ring_id() == sim_->ring_id() && p.best().forward() == forward &&
                          (de <= 1 || de == n - 1);
-    pose_check_ = fmt::format("pose recovered after {:.1f} in: ring '{}' edge {} {}; truth ring "
-                              "'{}' edge {} {}: {}",
-                              t.distance_in, p.best().ring_id(),
-                              p.best().edge_index(), p.best().forward() ? "forward" : "backward",
-                              sim_->ring_id(), t.edge_index, forward ? "forward" : "backward",
-                              correct ? "CORRECT" : "INCORRECT");
-    ctx_->log->info("{}", pose_check_);
+    const double sim_s = (SimNowNs() - start_wall_ns_) * 1e-9;
+    const double wall_s = (ctx_->now_ns() - start_wall_ns_) * 1e-9;
+    const double travelled_in = t.distance_in - recovery_start_in_;
+    std::string check = fmt::format(
+        "pose recovered after {} edges, {:.1f} ft, {:.1f} s simulated ({:.1f} s wall): ring '{}' "
+        "edge {} {}; truth ring '{}' edge {} {}: {}",
+        p.edges_sensed(), InchesToFeet(travelled_in), sim_s - recovery_start_s_,
+        wall_s - recovery_start_wall_s_, p.best().ring_id(), p.best().edge_index(),
+        p.best().forward() ? "forward" : "backward", sim_->ring_id(), t.edge_index,
+        forward ? "forward" : "backward", correct ? "CORRECT" : "INCORRECT");
+    ctx_->log->info("{}", check);
+    pose_checks_.push_back(check);
+    markers_.push_back({t.X_WR.x_in, t.X_WR.y_in, fmt::format("recovered {}", pose_checks_.size())});
+    if (kidnap_after_s_ >= 0.0 && !kidnapped_) {
+      kidnap_at_sim_s_ = sim_s + kidnap_after_s_;
+    }
+  }
+
+  // Teleports the robot (a kidnapping) once the configured time after recovery has passed.
+  void MaybeKidnap() {
+    if (kidnapped_ || kidnap_at_sim_s_ < 0.0) return;
+    const double sim_s = (SimNowNs() - start_wall_ns_) * 1e-9;
+    if (sim_s < kidnap_at_sim_s_) return;
+    kidnapped_ = true;
+    const SimTruth before = sim_->Truth();
+    const double ring_position = sim_->RingPosition() + kidnap_jump_in_;
+    sim_->Teleport(ring_position);
+    const SimTruth after = sim_->Truth();
+    ctx_->log->info("kidnapped: teleported from edge {} to edge {} ({:+.0f} in along the ring)",
+                    before.edge_index, after.edge_index, kidnap_jump_in_);
+    markers_.push_back({after.X_WR.x_in, after.X_WR.y_in, "kidnapped to"});
+    path_.push_back({after.X_WR.x_in, after.X_WR.y_in});
+    recovery_start_in_ = after.distance_in;
+    recovery_start_s_ = sim_s;
+    recovery_start_wall_s_ = (ctx_->now_ns() - start_wall_ns_) * 1e-9;
   }
 
   void StepSim() {
@@ -144,6 +203,7 @@ class VirtualRobotNode : public runtime::ProcessNode {
   }
 
   void PublishEncoders() {
+    MaybeKidnap();
     msgs::EncoderReading e;
     e.left_travel_in(sim_->left_travel_in());
     e.right_travel_in(sim_->right_travel_in());
@@ -157,6 +217,9 @@ class VirtualRobotNode : public runtime::ProcessNode {
     g.edge_index(static_cast<uint32_t>(t.edge_index));
     g.offset_in(t.offset_in);
     g.distance_in(t.distance_in);
+    if (std::hypot(t.X_WR.x_in - path_.back().first, t.X_WR.y_in - path_.back().second) > 6.0) {
+      path_.push_back({t.X_WR.x_in, t.X_WR.y_in});
+    }
     truth_->Publish(g, SimNowNs());
   }
 
@@ -190,7 +253,16 @@ class VirtualRobotNode : public runtime::ProcessNode {
   double left_ftps_ = 0.0, right_ftps_ = 0.0;
   int64_t last_wheels_ns_ = 0, last_step_ns_ = 0;
   uint64_t frames_ = 0, scans_ = 0;
-  std::string pose_check_;
+  std::unique_ptr<map::Map> map_;
+  std::string start_check_;
+  std::vector<std::string> pose_checks_;
+  bool judged_ = false;
+  double kidnap_after_s_ = -1.0, kidnap_jump_in_ = 0.0, kidnap_at_sim_s_ = -1.0;
+  bool kidnapped_ = false;
+  double recovery_start_in_ = 0.0, recovery_start_s_ = 0.0, recovery_start_wall_s_ = 0.0;
+  std::string summary_png_;
+  std::vector<std::pair<double, double>> path_;
+  std::vector<map::MarkerOverlay> markers_;
   std::unique_ptr<runtime::Reader<msgs::LocalizationPosePubSubType>> poses_;
   std::unique_ptr<runtime::Writer<msgs::EncoderReadingPubSubType>> encoders_;
   std::unique_ptr<runtime::Writer<msgs::SonarEchoPubSubType>> sonar_;

@@ -56,6 +56,8 @@ class WorldSim {
   void Step(double dt_s, double left_ftps, double right_ftps);
   // Puts the robot at another place along the ring (a kidnapping); encoders keep counting.
   void Teleport(double ring_position_in);
+  // Arc length along the ring (ring order) of the optical axis's foot.
+  double RingPosition() const { return position_in_; }
   std::array<float, 24> Sonar();
   // A mono8 frame, row-major, width x height, no padding.
   std::vector<std::uint8_t> RenderFrame();
