@@ -30,6 +30,7 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   node_in_.emplace_back(last.x_in, last.y_in);
   edge_start_in_.push_back(s);
   length_in_ = s;
+  BuildAxis();
 
   world::MapWorldOptions options;
   options.hallway_width_in = config.hallway_width_in;
@@ -39,30 +40,93 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   scene_ = std::make_unique<world::Scene>(world::BuildRingWorld(map, ring_, options, world_rng).world);
   camera_ = std::make_unique<world::CameraRenderer>(models_.camera);
   models_.base.slip_stddev = config.wheel_slip_stddev;
-  position_in_ = Wrap(start_offset_in);
+  position_in_ = PathFromRing(start_offset_in);
 }
 
-double WorldSim::Wrap(double s) const {
-  if (!closed_) return std::clamp(s, 0.0, length_in_);
-  s = std::fmod(s, length_in_);
-  return s < 0.0 ? s + length_in_ : s;
+double WorldSim::Wrap(double p) const {
+  const double total = axis_start_in_.back();
+  if (!closed_) return std::clamp(p, 0.0, total);
+  p = std::fmod(p, total);
+  return p < 0.0 ? p + total : p;
 }
 
-int WorldSim::EdgeAt(double s) const {
+int WorldSim::SegmentAt(double p) const {
+  const auto it = std::upper_bound(axis_start_in_.begin(), axis_start_in_.end(), p);
+  return std::clamp(static_cast<int>(it - axis_start_in_.begin()) - 1, 0, edge_count() - 1);
+}
+
+double WorldSim::PathFromRing(double s) const {
+  if (closed_) {
+    s = std::fmod(s, length_in_);
+    if (s < 0.0) s += length_in_;
+  }
+  s = std::clamp(s, 0.0, length_in_);
   const auto it = std::upper_bound(edge_start_in_.begin(), edge_start_in_.end(), s);
-  return std::clamp(static_cast<int>(it - edge_start_in_.begin()) - 1, 0, edge_count() - 1);
+  const int e = std::clamp(static_cast<int>(it - edge_start_in_.begin()) - 1, 0, edge_count() - 1);
+  const double metric = edge_start_in_[e + 1] - edge_start_in_[e];
+  const double f = metric > 0.0 ? (s - edge_start_in_[e]) / metric : 0.0;
+  return axis_start_in_[e] + f * (axis_start_in_[e + 1] - axis_start_in_[e]);
 }
 
-world::Pose2d WorldSim::PoseAt(double s) const {
-  const int e = EdgeAt(s);
-  const Eigen::Vector2d a = node_in_[e], b = node_in_[e + 1];
-  const double seg = (b - a).norm();
-  const Eigen::Vector2d u = seg > 0.0 ? Eigen::Vector2d((b - a) / seg) : Eigen::Vector2d(1, 0);
-  const double metric = edge_start_in_[e + 1] - edge_start_in_[e];
-  // The map's node spacing may differ from the metric by up to 1 % (map_io.h).
-  const Eigen::Vector2d foot = a + u * ((s - edge_start_in_[e]) * seg / metric);
-  const Eigen::Vector2d left(-u.y(), u.x());  // the hallway lies left of ring order
-  const Eigen::Vector2d p = foot + left * (0.5 * config_.hallway_width_in);
+double WorldSim::RingPosition() const {
+  const SimTruth t = Truth();
+  return edge_start_in_[t.edge_index] + t.offset_in;
+}
+
+namespace {
+
+Eigen::Vector2d Unit(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  return d.norm() > 0.0 ? Eigen::Vector2d(d / d.norm()) : Eigen::Vector2d(1.0, 0.0);
+}
+
+Eigen::Vector2d Left(const Eigen::Vector2d& u) { return {-u.y(), u.x()}; }
+
+}  // namespace
+
+void WorldSim::BuildAxis() {
+  const double h = 0.5 * config_.hallway_width_in;
+  const int n = edge_count();
+  axis_in_.resize(n + 1);
+  for (int i = 0; i <= n; ++i) {
+    const bool has_before = closed_ || i > 0;
+    const bool has_after = closed_ || i < n;
+    const int before = (i - 1 + n) % n, after = i % n;
+    const Eigen::Vector2d node = node_in_[i];
+    if (!has_before || !has_after) {
+      const int e = has_after ? after : before;
+      axis_in_[i] = node + Left(Unit(node_in_[e], node_in_[e + 1])) * h;
+      continue;
+    }
+    const Eigen::Vector2d ua = Unit(node_in_[before], node_in_[before + 1]);
+    const Eigen::Vector2d ub = Unit(node_in_[after], node_in_[after + 1]);
+    const Eigen::Vector2d na = Left(ua), nb = Left(ub);
+    const double cross = ua.x() * ub.y() - ua.y() * ub.x();
+    Eigen::Vector2d m = node + na * h;
+    if (std::abs(cross) > 1e-6) {
+      // node + na h + ua t = node + nb h + ub u: the two offset lines meet at the mitre.
+      const Eigen::Vector2d rhs = (nb - na) * h;
+      const double t = (rhs.x() * ub.y() - rhs.y() * ub.x()) / cross;
+      m = node + na * h + ua * t;
+      // A jog shorter than the hallway is wide would throw the mitre far off: keep the
+      // axis near the node there.
+      if ((m - node).norm() > 3.0 * h) m = node + (na + nb).normalized() * h;
+    }
+    axis_in_[i] = m;
+  }
+  // Path length along the axis; a mitred segment that folds back (a jog narrower than the
+  // hallway) has no length of its own.
+  axis_start_in_.assign(n + 1, 0.0);
+  for (int e = 0; e < n; ++e) {
+    const Eigen::Vector2d u = Unit(node_in_[e], node_in_[e + 1]);
+    axis_start_in_[e + 1] = axis_start_in_[e] + std::max(0.0, (axis_in_[e + 1] - axis_in_[e]).dot(u));
+  }
+}
+
+world::Pose2d WorldSim::PoseAt(double path_in) const {
+  const int e = SegmentAt(path_in);
+  const Eigen::Vector2d u = Unit(node_in_[e], node_in_[e + 1]);
+  const Eigen::Vector2d p = axis_in_[e] + u * (path_in - axis_start_in_[e]);
   // Facing against ring order puts the wall on the base's left, where the camera looks.
   return world::Pose2d{p.x(), p.y(), std::atan2(-u.y(), -u.x())};
 }
@@ -89,7 +153,7 @@ void WorldSim::Step(double dt_s, double left_ftps, double right_ftps) {
   distance_in_ += std::abs(ds);
 }
 
-void WorldSim::Teleport(double ring_position_in) { position_in_ = Wrap(ring_position_in); }
+void WorldSim::Teleport(double ring_position_in) { position_in_ = PathFromRing(ring_position_in); }
 
 std::array<float, 24> WorldSim::Sonar() {
   std::array<float, 24> out{};
@@ -115,8 +179,12 @@ SimTruth WorldSim::Truth() const {
   SimTruth t;
   t.X_WR = PoseAt(position_in_);
   t.ring = ring_;
-  t.edge_index = EdgeAt(position_in_);
-  t.offset_in = position_in_ - edge_start_in_[t.edge_index];
+  // The edge the camera looks at: the foot of the optical axis on the segment's wall.
+  t.edge_index = SegmentAt(position_in_);
+  const Eigen::Vector2d node = node_in_[t.edge_index];
+  const Eigen::Vector2d u = Unit(node, node_in_[t.edge_index + 1]);
+  const double metric = edge_start_in_[t.edge_index + 1] - edge_start_in_[t.edge_index];
+  t.offset_in = std::clamp((t.X_WR.position() - node).dot(u), 0.0, metric);
   t.distance_in = distance_in_;
   t.forward_in_ring = travel_sign_ < 0;
   return t;

@@ -46,6 +46,8 @@ struct SimTruth {
 // wheel slip: the encoders report the commanded travel, the robot moves the slipped one.
 // The camera looks left of the base's heading (configs/robot.yaml), and the hallway lies on
 // the left of ring order, so the base faces against ring order to see the ring's wall.
+// The axis is the wall offset by half the hallway, mitred at corners: at a concave corner
+// the robot turns before reaching the wall ahead instead of running into it.
 class WorldSim {
  public:
   // Throws std::invalid_argument for an unknown ring; InputError comes from the configs.
@@ -57,7 +59,7 @@ class WorldSim {
   // Puts the robot at another place along the ring (a kidnapping); encoders keep counting.
   void Teleport(double ring_position_in);
   // Arc length along the ring (ring order) of the optical axis's foot.
-  double RingPosition() const { return position_in_; }
+  double RingPosition() const;
   std::array<float, 24> Sonar();
   // A mono8 frame, row-major, width x height, no padding.
   std::vector<std::uint8_t> RenderFrame();
@@ -72,8 +74,10 @@ class WorldSim {
 
  private:
   world::Pose2d PoseAt(double ring_position_in) const;
-  int EdgeAt(double ring_position_in) const;
-  double Wrap(double ring_position_in) const;
+  void BuildAxis();
+  int SegmentAt(double path_in) const;
+  double Wrap(double path_in) const;
+  double PathFromRing(double ring_position_in) const;
 
   WorldSimConfig config_;
   world::RobotModels models_;
@@ -85,9 +89,11 @@ class WorldSim {
   int ring_ = 0;
   bool closed_ = true;
   std::vector<Eigen::Vector2d> node_in_;   // node i starts edge i
+  std::vector<Eigen::Vector2d> axis_in_;   // the hallway axis point abreast of node i
+  std::vector<double> axis_start_in_;      // path length along the axis to axis_in_[i]
   std::vector<double> edge_start_in_;      // arc length along the ring; back() == length
   double length_in_ = 0.0;
-  double position_in_ = 0.0;               // arc length of the optical axis's foot
+  double position_in_ = 0.0;               // path length along the hallway axis
   double left_travel_in_ = 0.0, right_travel_in_ = 0.0, distance_in_ = 0.0;
   int travel_sign_ = 0;
   std::mt19937_64 rng_;

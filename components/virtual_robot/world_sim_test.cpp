@@ -40,21 +40,32 @@ WorldSimConfig Exact() {
 }
 
 TEST(WorldSimTest, ForwardTravelMovesAgainstRingOrderByTheWheelTravel) {
-  WorldSim sim(SquareRing(), sensing::RobotConfig{}, Exact(), 300.0, 1);
+  WorldSim sim(SquareRing(), sensing::RobotConfig{}, Exact(), 150.0, 1);
+  const SimTruth before = sim.Truth();
   sim.Step(1.0, 2.0, 2.0);  // 24 in
-  const SimTruth t = sim.Truth();
-  EXPECT_EQ(t.edge_index, 2);
-  EXPECT_THAT(t.offset_in, DoubleNear(300.0 - 24.0 - 218.0, 1e-9));
-  EXPECT_FALSE(t.forward_in_ring);
+  const SimTruth after = sim.Truth();
+  EXPECT_EQ(after.edge_index, before.edge_index);
+  EXPECT_THAT(after.offset_in, DoubleNear(before.offset_in - 24.0, 1e-9));
+  EXPECT_THAT(after.X_WR.x_in, DoubleNear(before.X_WR.x_in - 24.0, 1e-9));
+  EXPECT_FALSE(after.forward_in_ring);
   EXPECT_THAT(sim.left_travel_in(), DoubleNear(24.0, 1e-9));
 }
 
 TEST(WorldSimTest, RobotRunsOnTheHallwayAxisFacingAgainstRingOrder) {
   WorldSim sim(SquareRing(), sensing::RobotConfig{}, Exact(), 100.0, 1);
   const SimTruth t = sim.Truth();
-  EXPECT_THAT(t.X_WR.x_in, DoubleNear(100.0, 1e-9));
   EXPECT_THAT(t.X_WR.y_in, DoubleNear(60.0, 1e-9));
   EXPECT_THAT(std::abs(t.X_WR.theta_rad), DoubleNear(M_PI, 1e-9));
+  EXPECT_THAT(t.offset_in, DoubleNear(t.X_WR.x_in, 1e-9));  // abreast of the camera
+}
+
+TEST(WorldSimTest, AxisTurnsBeforeTheWallAheadAtACorner) {
+  // Node 0 joins the last side (x = 0, walked toward -y) to the first (y = 0): the axis
+  // corner lies half the hallway from both walls, not on either.
+  WorldSim sim(SquareRing(), sensing::RobotConfig{}, Exact(), 0.0, 1);
+  const SimTruth t = sim.Truth();
+  EXPECT_THAT(t.X_WR.x_in, DoubleNear(60.0, 1e-9));
+  EXPECT_THAT(t.X_WR.y_in, DoubleNear(60.0, 1e-9));
 }
 
 TEST(WorldSimTest, CoaxialSonarReadsTheMappedWallAtHalfTheHallway) {
