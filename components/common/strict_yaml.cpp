@@ -7,9 +7,7 @@
 
 namespace stickrep {
 
-namespace {
-
-std::string ReadWholeFile(const std::string& path) {
+std::string ReadYamlText(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError(path, 0, "", "no such file (or not a regular file)");
@@ -28,8 +26,6 @@ std::string ReadWholeFile(const std::string& path) {
   return ss.str();
 }
 
-}  // namespace
-
 StrictYaml::StrictYaml(YAML::Node node, std::string file, std::string path)
     : node_(std::move(node)),
       file_(std::move(file)),
@@ -37,7 +33,7 @@ StrictYaml::StrictYaml(YAML::Node node, std::string file, std::string path)
       used_(std::make_shared<std::set<std::string>>()) {}
 
 StrictYaml StrictYaml::LoadFile(const std::string& path) {
-  return LoadString(ReadWholeFile(path), path);
+  return LoadString(ReadYamlText(path), path);
 }
 
 StrictYaml StrictYaml::LoadString(const std::string& text, const std::string& name) {

@@ -18,6 +18,10 @@ namespace stickrep {
 // Largest YAML file any StickRep program reads (maps and configs are a few hundred kB).
 inline constexpr std::uintmax_t kMaxYamlFileBytes = 16u * 1024u * 1024u;
 
+// The text of a YAML file, refused before reading if it is missing, not a regular file, or
+// over kMaxYamlFileBytes (a huge file of garbage is never loaded). Throws InputError.
+std::string ReadYamlText(const std::string& path);
+
 // A view of one YAML node that knows its file and its key path, reads values strictly and
 // reports every problem as an InputError naming file, line and key. A mapping remembers
 // which keys were read so that Finish() can reject the unknown ones ("every key used

@@ -19,8 +19,15 @@ std::optional<double> OdometerHistory::At(std::int64_t stamp_ns,
     return readings_.front().odometer_in;
   }
   if (stamp_ns >= readings_.back().stamp_ns) {
-    if (stamp_ns - readings_.back().stamp_ns > max_extrapolation_ns) return std::nullopt;
-    return readings_.back().odometer_in;
+    const Reading& last = readings_.back();
+    if (stamp_ns - last.stamp_ns > max_extrapolation_ns) return std::nullopt;
+    if (readings_.size() < 2) return last.odometer_in;
+    // A frame may arrive before the odometry of its own instant: carry the latest speed on.
+    const Reading& prev = readings_[readings_.size() - 2];
+    const double span = static_cast<double>(last.stamp_ns - prev.stamp_ns);
+    if (span <= 0.0) return last.odometer_in;
+    const double speed = (last.odometer_in - prev.odometer_in) / span;
+    return last.odometer_in + speed * static_cast<double>(stamp_ns - last.stamp_ns);
   }
   const auto after = std::lower_bound(
       readings_.begin(), readings_.end(), stamp_ns,

@@ -14,8 +14,9 @@ class OdometerHistory {
   explicit OdometerHistory(std::size_t capacity = 200) : capacity_(capacity) {}
   // Readings must come in time order; an older one is ignored and false returned.
   bool Add(std::int64_t stamp_ns, double odometer_in);
-  // Linear interpolation at `stamp_ns`; clamped to the oldest/newest reading within
-  // `max_extrapolation_ns` of them; empty if there is none close enough.
+  // Linear interpolation at `stamp_ns`; past the newest reading (a frame that arrives
+  // before the odometry of its instant) the last speed is carried on, before the oldest the
+  // oldest reading is used, each within `max_extrapolation_ns`; empty if none is close.
   std::optional<double> At(std::int64_t stamp_ns, std::int64_t max_extrapolation_ns) const;
 
  private:

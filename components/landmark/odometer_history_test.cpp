@@ -19,6 +19,13 @@ TEST(OdometerHistoryTest, ClampsWithinTheExtrapolationLimitAndRefusesBeyond) {
   EXPECT_FALSE(h.At(1'200'000'000, 50'000'000).has_value());
 }
 
+TEST(OdometerHistoryTest, PastTheNewestReadingTheLastSpeedIsCarriedOn) {
+  OdometerHistory h;
+  h.Add(1'000'000'000, 10.0);
+  h.Add(1'200'000'000, 16.24);
+  EXPECT_DOUBLE_EQ(*h.At(1'400'000'000, 300'000'000), 22.48);
+}
+
 TEST(OdometerHistoryTest, OutOfOrderReadingIsRefused) {
   OdometerHistory h;
   h.Add(2, 1.0);

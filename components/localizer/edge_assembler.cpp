@@ -95,18 +95,7 @@ void EdgeAssembler::EmitCorner(double turn_rad, std::vector<map::SensedEdge>& ou
   // way as the base: a turn toward the wall (left for the camera's side, in travel terms)
   // goes round a convex corner of the solid (90 deg), a turn away from it round a concave
   // one (270 deg).
-  const double wall_from = last_jamb_in_ ? *last_jamb_in_ : start_in_;
-  const double wall_in = direction_ * (odometer_in_ - wall_from);
-  if (wall_in >= config_.min_wall_in) {
-    map::SensedEdge wall;
-    wall.code = map::kWallCode;
-    wall.metric_in = wall_in;
-    wall.metric_is_lower_bound = !last_jamb_in_.has_value();
-    wall.angle_deg = pending_angle_deg_;
-    pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
-    out.push_back(wall);
-    sequence_.push_back(wall);
-  }
+  EmitWallUpTo(odometer_in_, out);
   pending_angle_deg_ = direction_ * turn_rad > 0.0 ? 90.0 : 270.0;
   last_jamb_in_ = odometer_in_;
 }
@@ -134,22 +123,25 @@ void EdgeAssembler::Emit(const Track& t, std::vector<map::SensedEdge>& out) {
   EmitEdges(t.along() - direction_ * width / 2.0, far_jamb, t.VotedClass(), out);
 }
 
+void EdgeAssembler::EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& out) {
+  // From the previous door's far jamb (or corner), or from where the sequence began: then
+  // only a lower bound, as the robot started inside it.
+  const double wall_from = last_jamb_in_ ? *last_jamb_in_ : start_in_;
+  const double wall_in = direction_ * (end_in - wall_from);
+  if (wall_in < config_.min_wall_in) return;
+  map::SensedEdge wall;
+  wall.code = map::kWallCode;
+  wall.metric_in = wall_in;
+  wall.metric_is_lower_bound = !last_jamb_in_.has_value();
+  wall.angle_deg = pending_angle_deg_;
+  pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
+  out.push_back(wall);
+  sequence_.push_back(wall);
+}
+
 void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::DoorClass door_class,
                               std::vector<map::SensedEdge>& out) {
-  // The wall before this door: from the previous door's far jamb, or from where the
-  // sequence began (then only a lower bound: the robot started inside it).
-  const double wall_from = last_jamb_in_ ? *last_jamb_in_ : start_in_;
-  const double wall_in = direction_ * (near_jamb_in - wall_from);
-  if (wall_in >= config_.min_wall_in) {
-    map::SensedEdge wall;
-    wall.code = map::kWallCode;
-    wall.metric_in = wall_in;
-    wall.metric_is_lower_bound = !last_jamb_in_.has_value();
-    wall.angle_deg = pending_angle_deg_;
-    pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
-    out.push_back(wall);
-    sequence_.push_back(wall);
-  }
+  EmitWallUpTo(near_jamb_in, out);
   map::SensedEdge door;
   door.angle_deg = pending_angle_deg_;
   pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();

@@ -92,6 +92,8 @@ class EdgeAssembler {
   std::optional<double> heading_ref_rad_;  // heading along the current stretch of wall
   double pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();  // node before next edge
   void EmitCorner(double turn_rad, std::vector<map::SensedEdge>& out);
+  // The wall from the last door's far jamb (or the sequence start) to `end_in`, if any.
+  void EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& out);
 };
 
 }  // namespace stickrep::localizer

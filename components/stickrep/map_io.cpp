@@ -270,22 +270,7 @@ Map ParseMap(const std::string& text, const std::string& name) {
 Map LoadMap(const std::string& path) {
   // Size and type are checked before reading so that a huge file of garbage is refused
   // without loading it; NUL bytes and YAML syntax are checked by StrictYaml::LoadString.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw InputError(path, 0, "", "no such file (or not a regular file)");
-  }
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw InputError(path, 0, "", "cannot read the file size: " + ec.message());
-  if (size > kMaxYamlFileBytes) {
-    throw InputError(path, 0, "",
-                     "file is " + std::to_string(size) + " bytes; a map file may be " +
-                         std::to_string(kMaxYamlFileBytes) + " bytes at most");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseMap(text.str(), path);
+  return ParseMap(ReadYamlText(path), path);
 }
 
 std::string FormatNumber(double value) {

@@ -2,10 +2,7 @@
 // it: frames and sonar scans rendered by the simulated world from the same pose, and the
 // odometer. It must classify a closed 36 in door, stay silent before a blank wall, and
 // survive malformed samples.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sys/file.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -43,25 +40,6 @@ constexpr double kFrameStepIn = 6.24;
 constexpr double kFramePeriodS = 0.2;
 constexpr std::uint64_t kSeed = 20261123;
 
-// ctest -j2 runs the tests of this file side by side and they share one domain: each test
-// holds the domain's lock while it runs, so one test's process never hears another's samples.
-class DomainLock {
- public:
-  explicit DomainLock(int domain_id) {
-    const std::string path =
-        ::testing::TempDir() + "/stickrep_domain_" + std::to_string(domain_id) + ".lock";
-    fd_ = open(path.c_str(), O_CREAT | O_RDWR, 0666);
-    if (fd_ >= 0) flock(fd_, LOCK_EX);
-  }
-  ~DomainLock() {
-    if (fd_ >= 0) close(fd_);
-  }
-  DomainLock(const DomainLock&) = delete;
-  DomainLock& operator=(const DomainLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
 
 // One frame as the landmark process receives it: the image and the gated sonar scan taken
 // from the same pose.
@@ -152,11 +130,10 @@ std::vector<Frame> BlankWallFrames(FrameRenderer& renderer) {
   return frames;
 }
 
-class LandmarkProcessTest : private DomainLock, public ProcessFixture {
+class LandmarkProcessTest : public ProcessFixture {
  protected:
   LandmarkProcessTest()
-      : DomainLock(kDomainId),
-        ProcessFixture(kDomainId),
+      : ProcessFixture(kDomainId),
         scans_(participant(), "robot/sonar"),
         odometry_(participant(), "robot/odometry"),
         images_(participant(), "robot/camera/image"),
@@ -293,19 +270,23 @@ TEST_F(LandmarkProcessTest, ClassifiesEveryFrameOfAClosed36InDoorAtSixFeetAsDoor
   StartLandmark();
   SendDoorFramesUntilOneIsClassified();
 
-  const size_t first = sent_image_stamps().size();
-  for (const Frame& f : door_frames_) Send(f);
+  // One frame at a time: the camera stream keeps only the newest frame, so a frame sent
+  // while the process is still busy with the previous one would replace it.
   std::set<int64_t> stamps;
-  ASSERT_TRUE(SpinUntil(
-      [&] {
-        stamps = std::set<int64_t>(sent_image_stamps().begin() + first, sent_image_stamps().end());
-        return stamps.size() == door_frames_.size() &&
-               ObservationsOf(stamps).size() == door_frames_.size();
-      },
-      20.0))
-      << ObservationsOf(stamps).size() << " observations of " << door_frames_.size()
-      << " door frames\n"
-      << Outputs();
+  for (const Frame& f : door_frames_) {
+    const size_t index = sent_image_stamps().size();
+    Send(f);
+    ASSERT_TRUE(SpinUntil(
+        [&] {
+          return sent_image_stamps().size() > index &&
+                 ObservationsOf({sent_image_stamps()[index]}).size() == 1;
+        },
+        20.0))
+        << "no observation of door frame " << stamps.size() << "\n"
+        << Outputs();
+    stamps.insert(sent_image_stamps()[index]);
+  }
+  ASSERT_EQ(ObservationsOf(stamps).size(), door_frames_.size());
 
   for (const msgs::LandmarkObservation& o : ObservationsOf(stamps)) {
     EXPECT_EQ(o.door_class(), msgs::DOOR_36) << "width " << o.width_in() << " in";

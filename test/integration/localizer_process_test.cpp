@@ -1,10 +1,7 @@
 // The localizer process alone, fed as the landmark and locomotion processes would feed it:
 // the doors of a stretch of the shipped map, seen frame by frame as the robot drives past
 // them, and the odometer. It must recover the pose, and survive landmarks it cannot use.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sys/file.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -48,25 +45,6 @@ constexpr double kInViewIn = 12.0;
 // The detector sees a double door as two leaves around the meeting stile.
 constexpr double kStileIn = 2.0;
 
-// ctest -j2 runs the tests of this file side by side and they share one domain: each test
-// holds the domain's lock while it runs, so one test's process never hears another's samples.
-class DomainLock {
- public:
-  explicit DomainLock(int domain_id) {
-    const std::string path =
-        ::testing::TempDir() + "/stickrep_domain_" + std::to_string(domain_id) + ".lock";
-    fd_ = open(path.c_str(), O_CREAT | O_RDWR, 0666);
-    if (fd_ >= 0) flock(fd_, LOCK_EX);
-  }
-  ~DomainLock() {
-    if (fd_ >= 0) close(fd_);
-  }
-  DomainLock(const DomainLock&) = delete;
-  DomainLock& operator=(const DomainLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
 
 msgs::DoorClass ToMsg(map::DoorClass c) {
   switch (c) {
@@ -132,11 +110,10 @@ Drive LayOut(const map::Ring& ring) {
   return drive;
 }
 
-class LocalizerProcessTest : private DomainLock, public ProcessFixture {
+class LocalizerProcessTest : public ProcessFixture {
  protected:
   LocalizerProcessTest()
-      : DomainLock(kDomainId),
-        ProcessFixture(kDomainId),
+      : ProcessFixture(kDomainId),
         system_(runtime::SystemConfig::LoadFile(ConfigPath("system.yaml"))),
         landmarks_(participant(), "perception/landmark"),
         odometry_(participant(), "robot/odometry"),

@@ -1,5 +1,9 @@
 #include "integration/process_fixture.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <csignal>
 #include <fstream>
 #include <sstream>
@@ -20,7 +24,18 @@ std::string WriteTempFile(const std::string& name, const std::string& text) {
   return path;
 }
 
-ProcessFixture::ProcessFixture(int domain_id) : domain_id_(domain_id) {
+DomainLock::DomainLock(int domain_id) {
+  const std::string path =
+      ::testing::TempDir() + "/stickrep_domain_" + std::to_string(domain_id) + ".lock";
+  fd_ = open(path.c_str(), O_CREAT | O_RDWR, 0666);
+  if (fd_ >= 0) flock(fd_, LOCK_EX);
+}
+
+DomainLock::~DomainLock() {
+  if (fd_ >= 0) close(fd_);
+}
+
+ProcessFixture::ProcessFixture(int domain_id) : domain_id_(domain_id), lock_(domain_id) {
   participant_ = std::make_unique<runtime::Participant>(
       runtime::ParticipantConfig{domain_id, "stickrep-test", "", ""},
       runtime::QosCatalog::LoadFile(ConfigPath("qos.yaml")), &discovery_);

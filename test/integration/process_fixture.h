@@ -15,9 +15,23 @@
 
 namespace stickrep::test {
 
-// Starts StickRep processes from build/bin on one DDS domain and joins that domain with a
-// participant of its own, so a test can publish, listen, and wait for discovery and data
-// with a bounded timeout instead of sleeping.
+// Holds an exclusive lock named after a DDS domain for as long as it lives. ctest -j runs the
+// tests of one file side by side and they share the file's domain: the lock keeps one
+// test's processes from hearing another's samples.
+class DomainLock {
+ public:
+  explicit DomainLock(int domain_id);
+  ~DomainLock();
+  DomainLock(const DomainLock&) = delete;
+  DomainLock& operator=(const DomainLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// Starts StickRep processes from build/bin on one DDS domain (held with a DomainLock) and
+// joins that domain with a participant of its own, so a test can publish, listen, and wait
+// for discovery and data with a bounded timeout instead of sleeping.
 class ProcessFixture : public ::testing::Test {
  protected:
   explicit ProcessFixture(int domain_id);
@@ -43,6 +57,7 @@ class ProcessFixture : public ::testing::Test {
 
  private:
   int domain_id_;
+  DomainLock lock_;
   runtime::Executor executor_;
   runtime::DiscoveryListener discovery_;
   std::unique_ptr<runtime::Participant> participant_;
