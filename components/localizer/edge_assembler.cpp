@@ -28,6 +28,7 @@ void EdgeAssembler::Restart() {
   open_.clear();
   sequence_.clear();
   last_jamb_in_.reset();
+  last_door_end_in_.reset();
   pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
   start_in_ = odometer_in_;
 }
@@ -58,6 +59,20 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
     // it is an open track now; hand this leaf over to it.
     const map::DoorClass leaf = t.VotedClass();
     const double far_jamb = t.along() + direction_ * t.MedianWidth() / 2.0;
+    // A wall panel between two doors, framed by their casings, looks like a door to the
+    // detector (Figure 4.1 pairs any two strong vertical edges). A "door" whose jambs both
+    // touch doors — the last one emitted and one already in view — is that panel: leave it
+    // out, and the wall between the two real doors is measured jamb to jamb as usual.
+    const double near_jamb = t.along() - direction_ * t.MedianWidth() / 2.0;
+    const bool touches_previous =
+        last_door_end_in_ && std::abs(near_jamb - *last_door_end_in_) < config_.min_wall_in;
+    const bool touches_next =
+        std::any_of(open_.begin(), open_.end(), [&](const Track& n) {
+          const double n_near = n.along() - direction_ * n.MedianWidth() / 2.0;
+          return n.frames >= config_.min_frames &&
+                 std::abs(n_near - far_jamb) < config_.min_wall_in;
+        });
+    if (!t.first_leaf && touches_previous && touches_next) continue;
     if (!t.first_leaf && (leaf == map::DoorClass::k30 || leaf == map::DoorClass::k36)) {
       auto next = std::find_if(open_.begin(), open_.end(), [&](const Track& n) {
         const double near = n.along() - direction_ * n.MedianWidth() / 2.0;
@@ -96,6 +111,7 @@ void EdgeAssembler::EmitCorner(double turn_rad, std::vector<map::SensedEdge>& ou
   // goes round a convex corner of the solid (90 deg), a turn away from it round a concave
   // one (270 deg).
   EmitWallUpTo(odometer_in_, out);
+  last_door_end_in_.reset();  // a corner lies between this door and the next
   pending_angle_deg_ = direction_ * turn_rad > 0.0 ? 90.0 : 270.0;
   last_jamb_in_ = odometer_in_;
 }
@@ -150,6 +166,7 @@ void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::Door
   out.push_back(door);
   sequence_.push_back(door);
   last_jamb_in_ = far_jamb_in;
+  last_door_end_in_ = far_jamb_in;
 }
 
 }  // namespace stickrep::localizer

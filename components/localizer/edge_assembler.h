@@ -88,7 +88,8 @@ class EdgeAssembler {
   bool have_odometer_ = false;
   double start_in_ = 0.0;             // odometer where the current sequence began
   int direction_ = 0;                 // +1 / -1 once the robot has moved
-  std::optional<double> last_jamb_in_;  // trailing jamb of the last emitted door
+  std::optional<double> last_jamb_in_;  // trailing jamb of the last emitted door (or corner)
+  std::optional<double> last_door_end_in_;  // trailing jamb of the last emitted door
   std::optional<double> heading_ref_rad_;  // heading along the current stretch of wall
   double pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();  // node before next edge
   void EmitCorner(double turn_rad, std::vector<map::SensedEdge>& out);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace stickrep::localizer {
 namespace {
@@ -153,6 +154,26 @@ TEST(EdgeAssemblerTest, TurnOfTheHeadingEndsTheWallAtACornerWithItsAngle) {
   EXPECT_DOUBLE_EQ(edges[1].angle_deg, 90.0);
   EXPECT_THAT(edges[1].metric_in, DoubleNear(182.0 - 102.0, 1e-9));
   EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k36));
+}
+
+TEST(EdgeAssemblerTest, WallPanelFramedByTheCasingsOfTwoDoorsIsNotADoor) {
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  // Doors 100..136 and 182..218 with a 46 in wall between; the detector also pairs the
+  // casings around the wall, a 40 in "door" from 139 to 179 (3 in casings).
+  for (double odo = 0.0; odo <= 340.0; odo += 6.0) {
+    for (auto [centre, width, cls] : {std::tuple{118.0, 36.0, map::DoorClass::k36},
+                                      std::tuple{159.0, 40.0, map::DoorClass::k40},
+                                      std::tuple{200.0, 36.0, map::DoorClass::k36}}) {
+      if (std::abs(centre - odo) < 12.0) a.AddSighting({cls, width, 0.8, centre});
+    }
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 4u);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36));
+  EXPECT_EQ(edges[2].code, map::kWallCode);
+  EXPECT_THAT(edges[2].metric_in, DoubleNear(46.0, 1e-9));
+  EXPECT_EQ(edges[3].code, map::DoorCode(map::DoorClass::k36));
 }
 
 TEST(EdgeAssemblerTest, DoorSeenInOneFrameOnlyIsDroppedAsSpurious) {
