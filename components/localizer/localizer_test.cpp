@@ -1,5 +1,7 @@
 #include "localizer/localizer.h"
 
+#include "localizer/test_ring.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -12,18 +14,7 @@ namespace {
 
 using ::testing::DoubleNear;
 
-map::Map MakeMap(const std::vector<map::Edge>& edges) {
-  map::Ring ring;
-  ring.id = "hall";
-  ring.edges = edges;
-  ring.nodes.resize(edges.size());
-  double x = 0.0;
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    ring.nodes[i].x_in = x;
-    x += edges[i].metric_in;
-  }
-  return map::Map(map::MapInfo{"test", "", "", std::nullopt}, {ring});
-}
+map::Map MakeMap(const std::vector<map::Edge>& edges) { return StraightRingMap(edges, "test"); }
 
 // Drives along the straightened ring from `start_in` in steps of 6.24 in (one frame per
 // 0.2 s at 2.6 ft/s), sighting every door whose centre is within `view_in` of the optical

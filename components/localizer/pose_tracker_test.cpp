@@ -1,5 +1,7 @@
 #include "localizer/pose_tracker.h"
 
+#include "localizer/test_ring.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -20,16 +22,7 @@ map::Map TrackMap() {
       Edge::Wall(45), Edge::Door(DoorClass::k40), Edge::Wall(120), Edge::Door(DoorClass::k32),
       Edge::Wall(70), Edge::Door(DoorClass::k36), Edge::Wall(150), Edge::Door(DoorClass::k30),
       Edge::Wall(80), Edge::Door(DoorClass::k36), Edge::Wall(100), Edge::Door(DoorClass::k40)};
-  map::Ring ring;
-  ring.id = "hall";
-  ring.edges = edges;
-  ring.nodes.resize(edges.size());
-  double x = 0.0;
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    ring.nodes[i].x_in = x;
-    x += edges[i].metric_in;
-  }
-  return map::Map(map::MapInfo{"track", "", "", std::nullopt}, {ring});
+  return StraightRingMap(edges, "track");
 }
 
 // One door the robot passes, in travel coordinates (inches travelled since the start).
