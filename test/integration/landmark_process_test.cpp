@@ -292,8 +292,10 @@ TEST_F(LandmarkProcessTest, ClassifiesEveryFrameOfAClosed36InDoorAtSixFeetAsDoor
     EXPECT_EQ(o.door_class(), msgs::DOOR_36) << "width " << o.width_in() << " in";
     EXPECT_NEAR(o.width_in(), kDoorWidthIn, 3.0);
     EXPECT_NEAR(o.range_in(), kRangeIn, 3.0);
-    // The localizer places the door at odometer + offset: both must be the frame's.
-    EXPECT_NEAR(o.odometry_distance_in(), odometer_by_stamp_.at(o.image_stamp_ns()), 1e-6);
+    // The localizer places the door at odometer + offset: both must be the frame's. A frame
+    // that beats its own odometry sample is placed by the last speed carried on, which may
+    // differ by a rounding of the sample times (well under the 0.6 in of jamb placement).
+    EXPECT_NEAR(o.odometry_distance_in(), odometer_by_stamp_.at(o.image_stamp_ns()), 0.1);
     EXPECT_NEAR(o.center_offset_in(), door_centre_offset_by_stamp_.at(o.image_stamp_ns()), 3.0)
         << "door centre along the wall from the optical axis, positive toward the base's forward";
   }
