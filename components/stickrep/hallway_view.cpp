@@ -1,0 +1,148 @@
+#include "stickrep/hallway_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace stickrep::map {
+
+namespace {
+
+bool IsCorner(double angle_deg) { return std::abs(angle_deg - 180.0) > 1.0; }
+
+}  // namespace
+
+bool HallwayView::IsJoinNode(int r, int node) const {
+  const std::string& id = original_.ring(r).id;
+  for (const Join& j : original_.joins()) {
+    if ((j.ring == id && j.node == node) || (j.to_ring == id && j.to_node == node)) return true;
+  }
+  return false;
+}
+
+bool HallwayView::IsStep(int r, int e) const {
+  const Ring& ring = original_.ring(r);
+  const int n = ring.EdgeCount();
+  if (!ring.closed && (e == 0 || e == n - 1)) return false;  // an end of an open ring
+  const Edge& edge = ring.edges[e];
+  if (!edge.IsWall() || edge.metric_in >= config_.max_step_in) return false;
+  const Node& a = ring.nodes[e];
+  const Node& b = ring.nodes[(e + 1) % ring.NodeCount()];
+  const int nb = (e + 1) % ring.NodeCount();
+  if (a.artificial || b.artificial || IsJoinNode(r, e) || IsJoinNode(r, nb)) return false;
+  // Opposite turns: the wall steps across and carries on parallel to itself.
+  return IsCorner(a.angle_deg) && IsCorner(b.angle_deg) &&
+         std::abs(a.angle_deg + b.angle_deg - 360.0) < 1.0;
+}
+
+HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
+    : config_(config), original_(map) {
+  std::vector<Ring> rings;
+  // [ring][original node] -> view node, for the joins; -1 when the node is gone.
+  std::vector<std::vector<int>> node_of(map.RingCount());
+  for (int r = 0; r < map.RingCount(); ++r) {
+    const Ring& ring = map.ring(r);
+    const int n = ring.EdgeCount();
+    std::vector<bool> step(n);
+    for (int e = 0; e < n; ++e) step[e] = config_.max_step_in > 0.0 && IsStep(r, e);
+    // Whether kept edge e continues the view edge of the kept edge before it: only steps
+    // lie between them and both are walls.
+    const auto prev = [&](int e) { return ring.closed ? (e - 1 + n) % n : e - 1; };
+    const auto merges = [&](int e) {
+      if (step[e]) return false;
+      int p = prev(e);
+      if (p < 0 || !step[p]) return false;
+      while (p >= 0 && step[p] && p != e) p = ring.closed || p > 0 ? prev(p) : -1;
+      return p >= 0 && p != e && ring.edges[p].IsWall() && ring.edges[e].IsWall();
+    };
+    // Start at a kept edge that begins a view edge.
+    int start = -1;
+    for (int e = 0; e < n && start < 0; ++e) {
+      if (!step[e] && !merges(e)) start = e;
+    }
+    if (start < 0) {  // every boundary merges (walls and steps only): keep them apart
+      for (int e = 0; e < n && start < 0; ++e) if (!step[e]) start = e;
+    }
+    Ring out;
+    out.id = ring.id;
+    out.closed = ring.closed;
+    std::vector<std::vector<int>> members;
+    std::vector<int> view_of(n, -1);
+    node_of[r].assign(ring.NodeCount(), -1);
+    if (start < 0) {
+      throw std::invalid_argument("ring '" + ring.id + "' has only steps");
+    }
+    if (!ring.closed) start = 0;  // edge 0 of an open ring is never a step
+    for (int k = 0; k < n; ++k) {
+      const int e = (start + k) % n;
+      if (step[e]) {
+        // A step belongs to the view edge before it.
+        if (!members.empty()) {
+          members.back().push_back(e);
+          view_of[e] = static_cast<int>(members.size()) - 1;
+        }
+        steps_removed_++;
+        continue;
+      }
+      if (!members.empty() && k > 0 && merges(e)) {
+        out.edges.back().metric_in += ring.edges[e].metric_in;
+        members.back().push_back(e);
+        view_of[e] = static_cast<int>(members.size()) - 1;
+        continue;
+      }
+      Node node = ring.nodes[e];
+      const int before = prev(e);
+      if (before >= 0 && step[before]) node.angle_deg = 180.0;  // the step's corner is gone
+      node_of[r][e] = static_cast<int>(out.nodes.size());
+      out.nodes.push_back(node);
+      out.edges.push_back(ring.edges[e]);
+      members.push_back({e});
+      view_of[e] = static_cast<int>(members.size()) - 1;
+    }
+    // Steps before the first kept edge of a closed ring close the last view edge.
+    for (int e = 0; e < n; ++e) {
+      if (view_of[e] < 0) {
+        members.back().push_back(e);
+        view_of[e] = static_cast<int>(members.size()) - 1;
+      }
+    }
+    if (!ring.closed) {
+      node_of[r][n] = static_cast<int>(out.nodes.size());
+      out.nodes.push_back(ring.nodes[n]);
+    }
+    rings.push_back(std::move(out));
+    members_.push_back(std::move(members));
+    view_of_.push_back(std::move(view_of));
+    step_.push_back(std::move(step));
+  }
+  std::vector<Join> joins;
+  for (Join j : map.joins()) {
+    const int from = map.FindRing(j.ring), to = map.FindRing(j.to_ring);
+    j.node = node_of[from][j.node];
+    j.to_node = node_of[to][j.to_node];
+    if (j.node < 0 || j.to_node < 0) {
+      throw std::invalid_argument("a join of ring '" + j.ring + "' lies on a removed step");
+    }
+    joins.push_back(j);
+  }
+  view_ = Map(map.info(), std::move(rings), std::move(joins));
+}
+
+HallwayView::Place HallwayView::ToOriginal(int ring, int edge, int dir, double offset_in) const {
+  const std::vector<int>& m = members_[ring][edge];
+  std::vector<int> along;
+  for (int e : m) {
+    if (!step_[ring][e]) along.push_back(e);
+  }
+  if (dir < 0) std::reverse(along.begin(), along.end());
+  double left = std::max(0.0, offset_in);
+  for (size_t i = 0; i < along.size(); ++i) {
+    const double len = original_.ring(ring).edges[along[i]].metric_in;
+    if (left <= len || i + 1 == along.size()) return {along[i], std::min(left, len)};
+    left -= len;
+  }
+  return {m.front(), 0.0};
+}
+
+}  // namespace stickrep::map

@@ -1,0 +1,68 @@
+#pragma once
+
+// The map as a robot that follows the hallway senses it. A hallway follower (§6.3, A3/A4)
+// turns only where a wall blocks its way; a shallow step of the wall (a pilaster, a
+// recessed alcove: two opposite corners joined by a short wall across the hallway) is
+// passed straight, and odometry sees one wall where the map has three or more edges. The
+// view removes those steps: the step's edge and its two corners go, the coplanar walls
+// either side merge into one (lengths along the hallway add), and the localizer matches
+// sensed edges against the view. Positions in the view map back to the map's own edges.
+
+#include <vector>
+
+#include "stickrep/map.h"
+
+namespace stickrep::map {
+
+struct HallwayViewConfig {
+  // A wall edge between two opposite corners (90 then 270, or 270 then 90) shorter than
+  // this is a step the follower passes straight. 0 keeps every corner.
+  double max_step_in = 36.0;
+};
+
+class HallwayView {
+ public:
+  // Throws std::invalid_argument when the collapsed map is not a valid map (it always is
+  // for a valid input; the check stays as a guard).
+  HallwayView(const Map& map, HallwayViewConfig config = {});
+
+  // The collapsed map: same rings (ids, order, closedness), fewer edges.
+  const Map& view() const { return view_; }
+  const Map& original() const { return original_; }
+
+  // Original edges that make up view edge `edge` of ring `ring`, in ring order (steps
+  // included).
+  const std::vector<int>& OriginalEdges(int ring, int edge) const {
+    return members_[ring][edge];
+  }
+  // The view edge that contains original edge `edge` of ring `ring`.
+  int ViewEdge(int ring, int edge) const { return view_of_[ring][edge]; }
+
+  // A place `offset_in` into view edge `edge` (measured from the node behind, travelling
+  // `dir`: +1 ring order) as a place on the original map: the original edge and the
+  // offset into it from its node behind. Steps across the hallway take no length.
+  struct Place {
+    int edge = 0;
+    double offset_in = 0.0;
+  };
+  Place ToOriginal(int ring, int edge, int dir, double offset_in) const;
+
+  // Edges removed as steps, over all rings.
+  int steps_removed() const { return steps_removed_; }
+
+ private:
+  // Whether original edge `e` of ring `r` is a step.
+  bool IsStep(int r, int e) const;
+  // Whether node `node` of ring `r` is where rings are joined (either side of a join).
+  bool IsJoinNode(int r, int node) const;
+
+  HallwayViewConfig config_;
+  Map original_;
+  Map view_;
+  std::vector<std::vector<std::vector<int>>> members_;  // [ring][view edge] -> originals
+  std::vector<std::vector<int>> view_of_;               // [ring][original edge] -> view edge
+  std::vector<std::vector<bool>> step_;                 // [ring][original edge]
+  int steps_removed_ = 0;
+};
+
+}  // namespace stickrep::map
