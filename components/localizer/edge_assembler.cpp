@@ -7,6 +7,9 @@
 namespace stickrep::localizer {
 
 void EdgeAssembler::AddSighting(const DoorSighting& s) {
+  // While the base turns in place the camera sweeps across the corner: no wall is square
+  // to it and a sighting has no place along either wall.
+  if (corner_ && !corner_->settled) return;
   for (Track& t : open_) {
     if (std::abs(t.along() - s.along_in) < config_.same_door_in) {
       t.along_sum += s.along_in;
@@ -26,6 +29,8 @@ void EdgeAssembler::AddSighting(const DoorSighting& s) {
 
 void EdgeAssembler::Restart() {
   open_.clear();
+  corner_.reset();
+  placed_.clear();
   sequence_.clear();
   last_jamb_in_.reset();
   last_door_end_in_.reset();
@@ -45,6 +50,19 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
   }
   odometer_in_ = odometer_in;
   if (direction_ == 0) return out;
+  out.swap(placed_);
+  if (corner_) {
+    if (!corner_->settled) {
+      const double off = std::remainder(heading_rad - *heading_ref_rad_, 2.0 * M_PI);
+      if (std::abs(off) * 180.0 / M_PI < config_.turn_settled_deg) {
+        corner_->settled = true;
+        corner_->settled_odometer_in = odometer_in_;
+      }
+    } else if (std::abs(odometer_in_ - corner_->settled_odometer_in) > config_.range_wait_in) {
+      PlaceCorner(std::numeric_limits<double>::quiet_NaN(), out);
+    }
+    if (corner_) return out;  // nothing is placed along the new wall before the corner
+  }
   // Complete the tracks the optical axis has left behind, nearest first.
   std::sort(open_.begin(), open_.end(), [this](const Track& a, const Track& b) {
     return direction_ * a.along() < direction_ * b.along();
@@ -88,14 +106,33 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
   }
   if (!heading_ref_rad_) heading_ref_rad_ = heading_rad;
   const double turn = std::remainder(heading_rad - *heading_ref_rad_, 2.0 * M_PI);
+  if (std::abs(turn) * 180.0 / M_PI < config_.turn_settled_deg) {
+    if (std::isfinite(unconfirmed_range_in_)) wall_range_in_ = unconfirmed_range_in_;
+  }
+  unconfirmed_range_in_ = std::numeric_limits<double>::quiet_NaN();
   if (std::abs(turn) * 180.0 / M_PI > config_.corner_turn_deg) {
-    EmitCorner(turn, out);
-    heading_ref_rad_ = heading_rad;
+    // The reference turns by whole quarter turns: the hallway's corners are square (A3).
+    const double quarter = std::round(turn / (M_PI / 2.0)) * (M_PI / 2.0);
+    BeginCorner(quarter, out);
+    heading_ref_rad_ = std::remainder(*heading_ref_rad_ + quarter, 2.0 * M_PI);
   }
   return out;
 }
 
-void EdgeAssembler::EmitCorner(double turn_rad, std::vector<map::SensedEdge>& out) {
+void EdgeAssembler::SetWallRange(double range_in) {
+  if (!std::isfinite(range_in) || range_in <= 0.0) return;
+  if (corner_ && corner_->settled) {
+    std::vector<map::SensedEdge> out;  // emitted edges are kept in sequence_ for Advance
+    PlaceCorner(range_in, out);
+    placed_.insert(placed_.end(), out.begin(), out.end());
+    wall_range_in_ = range_in;
+    return;
+  }
+  // Taken once the next heading shows the base was not turning meanwhile (Advance).
+  if (!corner_) unconfirmed_range_in_ = range_in;
+}
+
+void EdgeAssembler::BeginCorner(double turn_rad, std::vector<map::SensedEdge>& out) {
   // Every door behind the corner is complete: its frames are all in.
   std::sort(open_.begin(), open_.end(), [this](const Track& a, const Track& b) {
     return direction_ * a.along() < direction_ * b.along();
@@ -110,10 +147,31 @@ void EdgeAssembler::EmitCorner(double turn_rad, std::vector<map::SensedEdge>& ou
   // way as the base: a turn toward the wall (left for the camera's side, in travel terms)
   // goes round a convex corner of the solid (90 deg), a turn away from it round a concave
   // one (270 deg).
-  EmitWallUpTo(odometer_in_, out);
+  corner_ = PendingCorner{odometer_in_, turn_rad, wall_range_in_, false, 0.0};
+}
+
+// Where the walls end and begin at a corner. The base turns in place at odometer reading
+// c, with its centre r1 from the wall before and r2 from the wall after (coaxial sonar,
+// read before and after the turn). Turning away from the wall (a concave corner, 270):
+// the wall before runs on past the optical axis to the wall ahead, r2 further, and the
+// wall after began r1 behind the axis's new foot. Turning toward the wall (convex, 90):
+// the wall before ended r2 behind the axis — the base drove on into the crossing — and
+// the wall after begins r1 ahead. A base on the mitred axis of a corner has r1 = r2 =
+// half the hallway; a follower that turns early or late shifts them, which the ranges
+// measure.
+void EdgeAssembler::PlaceCorner(double range_after_in, std::vector<map::SensedEdge>& out) {
+  const PendingCorner c = *corner_;
+  corner_.reset();
+  double r1 = c.range_before_in, r2 = range_after_in;
+  if (!std::isfinite(r1)) r1 = r2;
+  if (!std::isfinite(r2)) r2 = r1;
+  if (!std::isfinite(r1)) r1 = r2 = 0.0;  // no range either side: the turn point itself
+  const bool toward_wall = direction_ * c.turn_rad > 0.0;
+  const double sign = toward_wall ? -1.0 : +1.0;
+  EmitWallUpTo(c.odometer_in + sign * direction_ * r2, out);
   last_door_end_in_.reset();  // a corner lies between this door and the next
-  pending_angle_deg_ = direction_ * turn_rad > 0.0 ? 90.0 : 270.0;
-  last_jamb_in_ = odometer_in_;
+  pending_angle_deg_ = toward_wall ? 90.0 : 270.0;
+  last_jamb_in_ = c.odometer_in - sign * direction_ * r1;
 }
 
 map::DoorClass EdgeAssembler::Track::VotedClass() const {

@@ -36,6 +36,13 @@ struct EdgeAssemblerConfig {
   // A heading change this large is a corner of the hallway: the node between two walls
   // (90 or 270 degrees, Table 6.1 and 6.3), sensed by odometry as the base turns (A3).
   double corner_turn_deg = 45.0;
+  // A turn is over once the heading is this close to the reference turned by a multiple
+  // of 90 degrees; the robot holds the new heading, and the wall range read then is the
+  // one after the corner.
+  double turn_settled_deg = 10.0;
+  // Without a wall range after the turn within this much travel, the range before the
+  // turn stands in for it (a symmetric corner).
+  double range_wait_in = 24.0;
 };
 
 // Assembles per-frame door sightings and the odometer into the sensed sequence of StickRep
@@ -51,6 +58,9 @@ class EdgeAssembler {
   explicit EdgeAssembler(EdgeAssemblerConfig config = {}) : config_(config) {}
 
   void AddSighting(const DoorSighting& s);
+  // The perpendicular distance from the base centre to the wall the camera looks at (the
+  // coaxial sonar), for placing corners: see EmitCorner. Non-finite or non-positive: none.
+  void SetWallRange(double range_in);
   // Advances the odometer (and the odometry heading, radians CCW); returns the edges
   // completed by this step, in travel order.
   std::vector<map::SensedEdge> Advance(double odometer_in, double heading_rad = 0.0);
@@ -92,7 +102,21 @@ class EdgeAssembler {
   std::optional<double> last_door_end_in_;  // trailing jamb of the last emitted door
   std::optional<double> heading_ref_rad_;  // heading along the current stretch of wall
   double pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();  // node before next edge
-  void EmitCorner(double turn_rad, std::vector<map::SensedEdge>& out);
+  // A corner begun (heading past corner_turn_deg) and not yet placed: the base is turning
+  // in place, or has just turned and waits for the wall range on its new side.
+  struct PendingCorner {
+    double odometer_in = 0.0;
+    double turn_rad = 0.0;           // quantised to a multiple of 90 degrees
+    double range_before_in = 0.0;    // NaN when no range was read before the turn
+    bool settled = false;            // the heading has reached the new reference
+    double settled_odometer_in = 0.0;
+  };
+  std::optional<PendingCorner> corner_;
+  std::vector<map::SensedEdge> placed_;  // placed by SetWallRange, handed out by Advance
+  double wall_range_in_ = std::numeric_limits<double>::quiet_NaN();  // newest, heading steady
+  double unconfirmed_range_in_ = std::numeric_limits<double>::quiet_NaN();  // since Advance
+  void BeginCorner(double turn_rad, std::vector<map::SensedEdge>& out);
+  void PlaceCorner(double range_after_in, std::vector<map::SensedEdge>& out);
   // The wall from the last door's far jamb (or the sequence start) to `end_in`, if any.
   void EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& out);
 };

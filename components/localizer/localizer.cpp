@@ -166,11 +166,16 @@ Hypothesis Localizer::MakeHypothesis(int last, int dir, double past_in,
 
 Hypothesis Localizer::MakeHypothesisAt(int ring_index, int edge, int dir, double offset_in,
                                        double probability) const {
+  return PlaceOnMap(map_, ring_index, edge, dir, offset_in, probability);
+}
+
+Hypothesis PlaceOnMap(const map::Map& map, int ring_index, int edge, int dir, double offset_in,
+                      double probability) {
   Hypothesis h;
   h.ring = ring_index;
   h.edge = edge;
   h.dir = dir;
-  const map::Ring& ring = map_.ring(h.ring);
+  const map::Ring& ring = map.ring(h.ring);
   h.offset_in = std::clamp(offset_in, 0.0, ring.edges[h.edge].metric_in);
   // Node e starts edge e in ring order and carries that edge's heading (gamma).
   const map::Node& start = ring.nodes[h.edge];
@@ -182,6 +187,11 @@ Hypothesis Localizer::MakeHypothesisAt(int ring_index, int edge, int dir, double
   h.y_in = from.y_in + h.offset_in * std::sin(h.heading_rad);
   h.probability = probability;
   return h;
+}
+
+Hypothesis OnOriginalMap(const map::HallwayView& view, const Hypothesis& h) {
+  const map::HallwayView::Place p = view.ToOriginal(h.ring, h.edge, h.dir, h.offset_in);
+  return PlaceOnMap(view.original(), h.ring, p.edge, h.dir, p.offset_in, h.probability);
 }
 
 }  // namespace stickrep::localizer

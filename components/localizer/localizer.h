@@ -9,6 +9,7 @@
 #include "localizer/edge_assembler.h"
 #include "localizer/pose_tracker.h"
 #include "recovery/bayes_localizer.h"
+#include "stickrep/hallway_view.h"
 #include "stickrep/map.h"
 #include "stickrep/sequence_matcher.h"
 
@@ -35,6 +36,13 @@ struct PoseEstimate {
   double confidence = 0.0;
   std::string message;
 };
+
+// A hypothesis `offset_in` into edge `edge` of ring `ring_index` (from the node behind in
+// travel direction `dir`), with its place and heading in the building frame.
+Hypothesis PlaceOnMap(const map::Map& map, int ring_index, int edge, int dir, double offset_in,
+                      double probability);
+// A hypothesis on a hallway view (matching runs there) as a place on the view's own map.
+Hypothesis OnOriginalMap(const map::HallwayView& view, const Hypothesis& h);
 
 // How sensed edges are matched against the map.
 enum class MatchMethod {
@@ -67,6 +75,8 @@ class Localizer {
   Localizer(const map::Map& map, LocalizerConfig config = {});
 
   void AddSighting(const DoorSighting& s) { assembler_.AddSighting(s); }
+  // Distance from the base centre to the camera's wall (coaxial sonar), for corners.
+  void SetWallRange(double range_in) { assembler_.SetWallRange(range_in); }
   // Advances the odometer and heading; true if the estimate changed (edges were matched).
   bool Advance(double odometer_in, double heading_rad = 0.0);
   const PoseEstimate& estimate() const { return estimate_; }

@@ -13,6 +13,8 @@
 #include "recovery/error_model.h"
 #include "runtime/system_config.h"
 #include "runtime/endpoint.h"
+#include "sensing/robot_config.h"
+#include "sensorsPubSubTypes.h"
 #include "stickrep/map_io.h"
 
 namespace stickrep::localizer {
@@ -87,22 +89,30 @@ class LocalizerNode : public runtime::ProcessNode {
     config.assembler.min_frames = c.Get<int>("min_frames", 1, 20);
     config.assembler.min_wall_in = c.Get<double>("min_wall_in", 0.0, 60.0, "in");
     config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
+    map::HallwayViewConfig view_config;
+    view_config.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
     const double publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
     c.Finish();
-    map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
+    view_ = std::make_unique<map::HallwayView>(map::LoadMap(ctx.system.map_file), view_config);
+    const map::Map& matched = view_->view();
+    const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
+    coaxial_sensor_ = robot.camera.coaxial_sensor;
+    head_radius_in_ = robot.sonar_ring.head_radius_in;
     if (config.method == MatchMethod::kBayes) {
       // The observation model: the landmark pipeline's confusion and the sensing noise.
       const recovery::ErrorModel errors = recovery::LoadErrorModel(error_model_file);
       const recovery::StudyConfig study = recovery::LoadStudyConfig(study_file);
-      const map::MatchIndex index(*map_);
+      const map::MatchIndex index(matched);
       config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise,
                                           study.bayes};
       ctx.log->info("Bayes matcher: error model {} ({}), threshold {}", error_model_file,
                     errors.source, study.bayes.threshold);
     }
-    localizer_ = std::make_unique<Localizer>(*map_, config);
-    ctx.log->info("map '{}': {} rings, {} edges", map_->info().name, map_->RingCount(),
-                  map_->EdgeCount());
+    localizer_ = std::make_unique<Localizer>(matched, config);
+    ctx.log->info("map '{}': {} rings, {} edges; matched as the hallway follower senses it: "
+                  "{} edges ({} wall steps under {} in passed straight)",
+                  matched.info().name, matched.RingCount(), view_->original().EdgeCount(),
+                  matched.EdgeCount(), view_->steps_removed(), view_config.max_step_in);
 
     pose_ = std::make_unique<runtime::Writer<msgs::LocalizationPosePubSubType>>(
         ctx.participant, "localization/pose");
@@ -113,6 +123,9 @@ class LocalizerNode : public runtime::ProcessNode {
     landmarks_ = std::make_unique<runtime::Reader<msgs::LandmarkObservationPubSubType>>(
         ctx.participant, ctx.executor, "perception/landmark",
         [this](const msgs::LandmarkObservation& o) { OnLandmark(o); });
+    sonar_ = std::make_unique<runtime::Reader<msgs::SonarScanPubSubType>>(
+        ctx.participant, ctx.executor, "robot/sonar",
+        [this](const msgs::SonarScan& s) { OnSonar(s); });
     odometry_ = std::make_unique<runtime::Reader<msgs::OdometryPubSubType>>(
         ctx.participant, ctx.executor, "robot/odometry",
         [this](const msgs::Odometry& o) { OnOdometry(o); });
@@ -120,7 +133,7 @@ class LocalizerNode : public runtime::ProcessNode {
   }
 
   void Activate() override {
-    msgs::StickRepMap m = ToMsg(*map_);
+    msgs::StickRepMap m = ToMsg(view_->original());
     map_writer_->Publish(m, ctx_->now_ns());
     PublishPose();
   }
@@ -163,6 +176,19 @@ class LocalizerNode : public runtime::ProcessNode {
     latency_ms_.push_back((ctx_->now_ns() - o.image_stamp_ns()) * 1e-6);
   }
 
+  // The coaxial sensor looks along the optical axis at the camera's wall: its range is how
+  // far the wall is, which places the walls at a corner (EdgeAssembler::PlaceCorner).
+  void OnSonar(const msgs::SonarScan& s) {
+    ctx_->counters.CountIn();
+    if (s.reading_state()[coaxial_sensor_] != msgs::SONAR_VALID) return;  // no wall there
+    const double range = s.range_in()[coaxial_sensor_];
+    if (!std::isfinite(range) || range <= 0.0) {
+      ctx_->counters.Drop("robot/sonar", "a reading marked valid is not a positive range");
+      return;
+    }
+    localizer_->SetWallRange(range + head_radius_in_);
+  }
+
   void OnOdometry(const msgs::Odometry& o) {
     ctx_->counters.CountIn();
     if (!std::isfinite(o.distance_in())) {
@@ -189,9 +215,10 @@ class LocalizerNode : public runtime::ProcessNode {
     p.edges_sensed(static_cast<uint32_t>(e.edges_sensed));
     p.message(e.message);
     msgs::PoseHypotheses hs;
-    for (const Hypothesis& h : e.hypotheses) {
+    for (const Hypothesis& matched : e.hypotheses) {
+      const Hypothesis h = OnOriginalMap(*view_, matched);
       msgs::PoseHypothesis m;
-      m.ring_id(map_->ring(h.ring).id);
+      m.ring_id(view_->original().ring(h.ring).id);
       m.edge_index(static_cast<uint32_t>(h.edge));
       m.forward(h.dir > 0);
       m.offset_in(h.offset_in);
@@ -207,7 +234,9 @@ class LocalizerNode : public runtime::ProcessNode {
   }
 
   runtime::NodeContext* ctx_ = nullptr;
-  std::unique_ptr<map::Map> map_;
+  std::unique_ptr<map::HallwayView> view_;  // the map, and the map as sensed
+  int coaxial_sensor_ = 0;
+  double head_radius_in_ = 0.0;
   std::unique_ptr<Localizer> localizer_;
   uint64_t landmarks_used_ = 0;
   std::vector<double> latency_ms_;
@@ -216,6 +245,7 @@ class LocalizerNode : public runtime::ProcessNode {
   std::unique_ptr<runtime::Writer<msgs::StickRepMapPubSubType>> map_writer_;
   std::unique_ptr<runtime::Reader<msgs::LandmarkObservationPubSubType>> landmarks_;
   std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;
+  std::unique_ptr<runtime::Reader<msgs::SonarScanPubSubType>> sonar_;
 };
 
 }  // namespace

@@ -147,6 +147,72 @@ TEST(EdgeAssemblerTest, TurnOfTheHeadingEndsTheWallAtACornerWithItsAngle) {
   EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k36));
 }
 
+// Drives `before` in along a wall at `r1` from it, turns in place by `turn_rad` in 10
+// steps of 3 degrees, then drives on with the new wall at `r2`, a 36 in door centred `door_after` in
+// past the turn point. Returns the edges sensed.
+std::vector<map::SensedEdge> DriveRoundCorner(double before, double r1, double turn_rad,
+                                              double r2, double door_after) {
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  const auto take = [&](const std::vector<map::SensedEdge>& e) {
+    edges.insert(edges.end(), e.begin(), e.end());
+  };
+  for (double odo = 0.0; odo <= before; odo += 6.0) {
+    a.SetWallRange(r1);
+    take(a.Advance(odo, 0.0));
+  }
+  for (int k = 1; k <= 30; ++k) {
+    // Mid-turn ranges look across the corner: not a wall range. Within a few steps of
+    // either end of the turn the sonar still sees the wall square enough.
+    a.SetWallRange(k <= 3 ? r1 : k <= 26 ? 200.0 : r2);
+    take(a.Advance(before, turn_rad * k / 30.0));
+  }
+  for (double odo = before + 6.0; odo <= before + door_after + 120.0; odo += 6.0) {
+    a.SetWallRange(r2);
+    const double centre = before + door_after;
+    if (std::abs(centre - odo) < 12.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.9, centre});
+    take(a.Advance(odo, turn_rad));
+  }
+  return edges;
+}
+
+TEST(EdgeAssemblerTest, ConcaveCornerWallsRunOnToTheWallAheadAndBackFromTheNewFoot) {
+  // Turning right (away from the camera's wall) 66 in before the wall ahead, 60 in from the
+  // wall beside: the wall before ran 66 in past the optical axis, the wall after began
+  // 60 in behind the new foot of the axis.
+  const auto edges = DriveRoundCorner(120.0, 60.0, -M_PI / 2.0, 66.0, 100.0);
+  ASSERT_EQ(edges.size(), 3u);
+  EXPECT_TRUE(edges[0].metric_is_lower_bound);
+  EXPECT_THAT(edges[0].metric_in, DoubleNear(120.0 + 66.0, 1e-9));
+  EXPECT_DOUBLE_EQ(edges[1].angle_deg, 270.0);
+  EXPECT_THAT(edges[1].metric_in, DoubleNear(60.0 + 100.0 - 18.0, 1e-9));
+  EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k36));
+}
+
+TEST(EdgeAssemblerTest, ConvexCornerWallEndsBehindTheAxisAndTheNextBeginsAhead) {
+  // Turning left (toward the wall) after driving 54 in into the crossing: the wall before
+  // ended 54 in back, the wall after begins 60 in ahead of the turn point.
+  const auto edges = DriveRoundCorner(180.0, 60.0, M_PI / 2.0, 54.0, 100.0);
+  ASSERT_EQ(edges.size(), 3u);
+  EXPECT_THAT(edges[0].metric_in, DoubleNear(180.0 - 54.0, 1e-9));
+  EXPECT_DOUBLE_EQ(edges[1].angle_deg, 90.0);
+  EXPECT_THAT(edges[1].metric_in, DoubleNear(100.0 - 18.0 - 60.0, 1e-9));
+}
+
+TEST(EdgeAssemblerTest, DoorSightingsWhileTurningInPlaceAreIgnored) {
+  EdgeAssembler a;
+  a.Advance(0.0, 0.0);
+  a.Advance(60.0, 0.0);
+  a.Advance(60.0, 1.0);  // turning: past 45 degrees
+  a.AddSighting({map::DoorClass::k36, 36.0, 0.9, 70.0});
+  a.AddSighting({map::DoorClass::k36, 36.0, 0.9, 70.0});
+  std::vector<map::SensedEdge> edges;
+  for (double odo = 60.0; odo <= 260.0; odo += 6.0) {
+    for (const auto& e : a.Advance(odo, M_PI / 2.0)) edges.push_back(e);
+  }
+  for (const auto& e : edges) EXPECT_EQ(e.code, map::kWallCode);
+}
+
 TEST(EdgeAssemblerTest, WallPanelFramedByTheCasingsOfTwoDoorsIsNotADoor) {
   EdgeAssembler a;
   std::vector<map::SensedEdge> edges;
