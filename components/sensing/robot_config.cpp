@@ -63,6 +63,7 @@ RobotConfig LoadRobotConfig(const StrictYaml& root) {
   c.pixel_pitch_mm = cam.Get<double>("pixel_pitch_mm", 0.0005, 0.1, "mm");
   c.coaxial_sensor = cam.Get<int>("coaxial_sensor", 0, 63, "");
   c.offset_forward_in = cam.Get<double>("offset_forward_in", -24.0, 24.0, "in");
+  c.radial_distortion_k1 = cam.Get<double>("radial_distortion_k1", -0.3, 0.5, "");
   cam.Finish();
   c.Validate(cam, s);
 

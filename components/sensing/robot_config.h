@@ -31,6 +31,9 @@ struct CameraConfig {
   double pixel_pitch_mm = 0.012414;  // derived: f * tan(FOV/2) / (width/2)
   int coaxial_sensor = 0;            // the sonar sensor whose axis is the optical axis (C3)
   double offset_forward_in = 0.0;    // camera centre ahead of the ring centre, on the axis
+  // The lens's radial distortion from calibration: x_d = x_u (1 + k1 r_u^2) in normalised
+  // image coordinates (k1 > 0: pincushion). The renderer draws with it; the sensing undoes it.
+  double radial_distortion_k1 = 0.10;  // configs/robot.yaml
 
   // The pitch, focal length, width and FOV are not independent: the image edge must sit at
   // FOV/2. Rejects sets that disagree by more than 0.5°.

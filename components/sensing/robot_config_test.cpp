@@ -27,6 +27,7 @@ const char* kGood = R"(robot:
     pixel_pitch_mm: 0.012414
     coaxial_sensor: 0
     offset_forward_in: 0
+    radial_distortion_k1: 0.1
   base:
     max_speed_ftps: 2.6
     wheel_base_in: 14
@@ -78,7 +79,7 @@ TEST(RobotConfigTest, MissingKeyIsRejected) {
 
 TEST(RobotConfigTest, OutOfRangeValueNamesUnitAndLine) {
   const InputError e = LoadError(Replace(kGood, "max_speed_ftps: 2.6", "max_speed_ftps: -1"));
-  EXPECT_EQ(e.line(), 19);
+  EXPECT_EQ(e.line(), 20);
   EXPECT_THAT(e.reason(), HasSubstr("ft/s"));
 }
 

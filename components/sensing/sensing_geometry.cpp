@@ -63,6 +63,7 @@ CameraModel CameraModel::FromConfig(const CameraConfig& c) {
   m.fov_rad = DegToRad(c.fov_deg);
   m.width_px = c.image_width_px;
   m.pitch_over_focal = c.pixel_pitch_mm / c.focal_length_mm;
+  m.k1 = c.radial_distortion_k1;
   return m;
 }
 

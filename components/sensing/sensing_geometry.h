@@ -20,18 +20,45 @@ struct CameraModel {
   double fov_rad = DegToRad(55.817);
   int width_px = 512;
   double pitch_over_focal = 0.012414 / 6.0;  // rad per pixel at the image centre
+  // Radial distortion on the centre row, x_d = x_u (1 + k1 x_u^2) (CameraConfig).
+  double k1 = 0.0;
 
   static CameraModel FromConfig(const CameraConfig& c);
 
   double mid_px() const { return width_px / 2.0; }
-  // Angle of a column from the optical axis (positive to the right).
-  double AngleOfColumn(double col_px) const {
-    return std::atan(pitch_over_focal * (col_px - mid_px()));
-  }
+  // Angle of a column from the optical axis (positive to the right), the lens distortion
+  // undone (Newton's method on the centre-row model; converges in a few steps for
+  // |k1| x^2 << 1). T is double or an automatic-differentiation scalar.
+  template <typename T>
+  T AngleOfColumnT(const T& col_px) const;
+  double AngleOfColumn(double col_px) const { return AngleOfColumnT(col_px); }
   double ColumnOfAngle(double angle_rad) const {
-    return mid_px() + std::tan(angle_rad) / pitch_over_focal;
+    const double xu = std::tan(angle_rad);
+    return mid_px() + xu * (1.0 + k1 * xu * xu) / pitch_over_focal;
   }
 };
+
+namespace geometry_detail {
+
+// atan for both double and Eigen::AutoDiffScalar (which provides atan2 but not atan).
+template <typename T>
+T Atan(const T& x) {
+  using std::atan2;
+  return atan2(x, T(1.0));
+}
+
+}  // namespace geometry_detail
+
+template <typename T>
+T CameraModel::AngleOfColumnT(const T& col_px) const {
+  using geometry_detail::Atan;
+  const T xd = (col_px - mid_px()) * pitch_over_focal;
+  T xu = xd;
+  for (int i = 0; i < 4 && k1 != 0.0; ++i) {
+    xu = xu - (xu * (1.0 + k1 * xu * xu) - xd) / (1.0 + 3.0 * k1 * xu * xu);
+  }
+  return Atan(xu);
+}
 
 // The two jamb footprints of a candidate vertical edge ribbon, in image columns (§4.1.1).
 struct Footprints {
@@ -56,17 +83,6 @@ enum class ShortSideEdges {
 inline double ThetaFromStare(double stare_rad) { return stare_rad - kPi / 2.0; }
 inline double StareFromTheta(double theta_rad) { return theta_rad + kPi / 2.0; }
 
-namespace geometry_detail {
-
-// atan for both double and Eigen::AutoDiffScalar (which provides atan2 but not atan).
-template <typename T>
-T Atan(const T& x) {
-  using std::atan2;
-  return atan2(x, T(1.0));
-}
-
-}  // namespace geometry_detail
-
 // Two Side Geometry (§5.2), unchecked; T is double or an automatic-differentiation scalar.
 // The angle alpha at the left end of W_L is computed as atan2 instead of the printed
 // arcsin(RR sin FOV / W_L): the two agree while alpha <= 90°, and atan2 stays right when
@@ -79,12 +95,10 @@ T TwoSideWidthT(const CameraModel& cam, const T& rl, const T& rr, const T& lj, c
   using std::sin;
   using std::sqrt;
   const double fov = cam.fov_rad;
-  const double k = cam.pitch_over_focal;
-  const double mid = cam.mid_px();
   const T wl = sqrt(rl * rl + rr * rr - 2.0 * rl * rr * cos(fov));  // Law of Cosines
   const T alpha = atan2(rr * sin(fov), rl - rr * cos(fov));
-  const T phi_l = fov / 2.0 - Atan(T(k * (mid - lj)));
-  const T phi_r = fov / 2.0 - Atan(T(k * (rj - mid)));
+  const T phi_l = fov / 2.0 + cam.AngleOfColumnT(lj);
+  const T phi_r = fov / 2.0 - cam.AngleOfColumnT(rj);
   const T d_l = rl * sin(phi_l) / sin(kPi - phi_l - alpha);  // Law of Sines
   const T d_r = rr * sin(phi_r) / sin(fov - phi_r + alpha);
   return wl - d_l - d_r;

@@ -24,6 +24,7 @@ RobotModels RobotModelsFromConfig(const sensing::RobotConfig& robot, double moun
   m.camera.width_px = cam.image_width_px;
   m.camera.height_px = cam.image_height_px;
   m.camera.mount_yaw_deg = mount_yaw_deg;
+  m.camera.k1 = cam.radial_distortion_k1;
   // robot.yaml gives the optical centre's offset from the ring centre along the optical
   // axis; the renderer wants it in the robot's forward/left frame.
   const double yaw_rad = DegToRad(mount_yaw_deg);
