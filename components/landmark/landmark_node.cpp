@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "basePubSubTypes.h"
+#include "landmark/landmark_config.h"
 #include "landmark/landmark_pipeline.h"
 #include "landmark/odometer_history.h"
 #include "perceptionPubSubTypes.h"
@@ -32,30 +33,10 @@ class LandmarkNode : public runtime::ProcessNode {
  public:
   void Configure(runtime::NodeContext& ctx) override {
     ctx_ = &ctx;
-    const StrictYaml& c = ctx.config;
-    sensing::LandmarkEstimatorConfig estimator;
-    const std::string geometry = c.Get<std::string>("geometry");
-    if (geometry == "short_side") {
-      estimator.geometry = sensing::Geometry::kShortSide;
-    } else if (geometry == "two_side") {
-      estimator.geometry = sensing::Geometry::kTwoSide;
-    } else {
-      c.Fail("geometry", "'" + geometry + "' is not one of: short_side, two_side");
-    }
-    estimator.min_confidence = c.Get<double>("min_confidence", 0.0, 1.0);
-    vision::RibbonDetectorParams detector;
-    const std::string rows = c.Get<std::string>("row_mode");
-    if (rows == "five_rows") {
-      detector.row_mode = vision::RowMode::kFiveRows;
-    } else if (rows == "full_frame") {
-      detector.row_mode = vision::RowMode::kFullFrame;
-    } else {
-      c.Fail("row_mode", "'" + rows + "' is not one of: five_rows, full_frame");
-    }
-    max_scan_age_ns_ = static_cast<int64_t>(c.Get<double>("max_scan_age_s", 0.01, 2.0, "s") * 1e9);
-    c.Finish();
+    const LandmarkConfig config = LoadLandmarkConfig(ctx.config);
+    max_scan_age_ns_ = static_cast<int64_t>(config.max_scan_age_s * 1e9);
     robot_ = sensing::LoadRobotConfigFile(ctx.system.robot_file);
-    pipeline_ = std::make_unique<LandmarkPipeline>(robot_, detector, estimator);
+    pipeline_ = std::make_unique<LandmarkPipeline>(robot_, config.detector, config.estimator);
 
     writer_ = std::make_unique<runtime::Writer<msgs::LandmarkObservationPubSubType>>(
         ctx.participant, "perception/landmark");

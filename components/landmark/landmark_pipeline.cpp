@@ -40,6 +40,10 @@ std::vector<sensing::JambCandidate> CandidatesAfterCasingRule(
       if (a < 0 || d >= n_fp || b >= c) continue;
       const int pa = fp[a].polarity, pb = fp[b].polarity, pc = fp[c].polarity, pd = fp[d].polarity;
       if (pa == 0 || pb == 0 || pa == pb || pc == pd || pa != -pd || pb != -pc) continue;
+      if (std::min({fp[a].rows_hit, fp[b].rows_hit, fp[c].rows_hit, fp[d].rows_hit}) <
+          rule.min_rows_hit) {
+        continue;
+      }
       const double left_band = fp[b].column_px - fp[a].column_px;
       const double right_band = fp[d].column_px - fp[c].column_px;
       const double opening = fp[c].column_px - fp[b].column_px;

@@ -52,6 +52,11 @@ struct CasingRule {
   // Left and right band widths within this ratio: 1 square-on; at the 7.5° limit of the
   // navigation envelope (§6.4.2) and beyond, the near band looks wider.
   double max_band_ratio = 2.5;
+  // Each of the four edges appears in at least this many of the processed rows: a casing
+  // runs the door's full height. A clump in one row only is not a casing edge: at 6 ft and
+  // 10° of roll (§4.1.1) a jamb crosses the outer rows ±30 px from where the centre rows
+  // see it, and those strays would otherwise frame a "casing" round the true jamb.
+  int min_rows_hit = 2;
 };
 
 // The landmark pipeline of §4.1 and Chapter 5 for one frame: the vertical edge ribbon

@@ -248,6 +248,17 @@ TEST(CasingRuleTest, NeedsBandsOfLikeWidth) {
   EXPECT_EQ(casings, 0);
 }
 
+TEST(CasingRuleTest, EdgesSeenInOneRowOnlyDoNotFrameACasing) {
+  // A rolled jamb crosses an outer row far from where the centre rows see it: those
+  // one-row strays beside a jamb look like a band but are not a casing.
+  std::vector<vision::Footprint> fps = {Fp(100, -1), Fp(120, +1), Fp(360, -1), Fp(380, +1)};
+  fps[0].rows_hit = 1;
+  int casings = 0;
+  const auto det = AllPairs(fps);
+  EXPECT_EQ(CandidatesAfterCasingRule(det, CasingRule{}, &casings).size(), det.pairs.size());
+  EXPECT_EQ(casings, 0);
+}
+
 TEST(CasingRuleTest, DisabledRuleKeepsEveryPair) {
   const auto det = AllPairs({Fp(100, -1), Fp(120, +1), Fp(360, -1), Fp(380, +1)});
   CasingRule off;

@@ -9,9 +9,8 @@
 #include "basePubSubTypes.h"
 #include "localizationPubSubTypes.h"
 #include "localizer/localizer.h"
+#include "localizer/localizer_config.h"
 #include "perceptionPubSubTypes.h"
-#include "recovery/error_model.h"
-#include "runtime/system_config.h"
 #include "runtime/endpoint.h"
 #include "sensing/robot_config.h"
 #include "sensorsPubSubTypes.h"
@@ -70,49 +69,22 @@ class LocalizerNode : public runtime::ProcessNode {
  public:
   void Configure(runtime::NodeContext& ctx) override {
     ctx_ = &ctx;
-    const StrictYaml& c = ctx.config;
-    LocalizerConfig config;
-    const std::string method = c.Get<std::string>("method");
-    std::string error_model_file, study_file;
-    if (method == "bayes") {
-      config.method = MatchMethod::kBayes;
-    } else if (method != "deterministic") {
-      c.Fail("method", "'" + method + "' is not one of: deterministic, bayes");
-    }
-    error_model_file = runtime::ResolvePath(c.Get<std::string>("error_model_file"), c.file());
-    study_file = runtime::ResolvePath(c.Get<std::string>("study_file"), c.file());
-    config.tolerance.metric_rel = c.Get<double>("metric_tolerance_rel", 0.0, 1.0);
-    config.tolerance.metric_abs_in = c.Get<double>("metric_tolerance_abs_in", 0.0, 120.0, "in");
-    config.tolerance.angle_deg = 20.0;  // corners are sensed as turns of the odometry heading
-    config.assembler.same_door_in = c.Get<double>("same_door_in", 1.0, 60.0, "in");
-    config.assembler.out_of_view_in = c.Get<double>("out_of_view_in", 6.0, 240.0, "in");
-    config.assembler.min_frames = c.Get<int>("min_frames", 1, 20);
-    config.assembler.min_wall_in = c.Get<double>("min_wall_in", 0.0, 60.0, "in");
-    config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
-    map::HallwayViewConfig view_config;
-    view_config.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
-    const double publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
-    c.Finish();
-    view_ = std::make_unique<map::HallwayView>(map::LoadMap(ctx.system.map_file), view_config);
+    const LocalizerSettings settings = LoadLocalizerSettings(ctx.config);
+    view_ = std::make_unique<map::HallwayView>(map::LoadMap(ctx.system.map_file), settings.view);
     const map::Map& matched = view_->view();
     const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
     coaxial_sensor_ = robot.camera.coaxial_sensor;
     head_radius_in_ = robot.sonar_ring.head_radius_in;
+    const LocalizerConfig config = MakeLocalizerConfig(settings, matched);
     if (config.method == MatchMethod::kBayes) {
-      // The observation model: the landmark pipeline's confusion and the sensing noise.
-      const recovery::ErrorModel errors = recovery::LoadErrorModel(error_model_file);
-      const recovery::StudyConfig study = recovery::LoadStudyConfig(study_file);
-      const map::MatchIndex index(matched);
-      config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise,
-                                          study.bayes};
-      ctx.log->info("Bayes matcher: error model {} ({}), threshold {}", error_model_file,
-                    errors.source, study.bayes.threshold);
+      ctx.log->info("Bayes matcher: error model {}, threshold {}", settings.error_model_file,
+                    config.bayes.settings.threshold);
     }
     localizer_ = std::make_unique<Localizer>(matched, config);
     ctx.log->info("map '{}': {} rings, {} edges; matched as the hallway follower senses it: "
                   "{} edges ({} wall steps under {} in passed straight)",
                   matched.info().name, matched.RingCount(), view_->original().EdgeCount(),
-                  matched.EdgeCount(), view_->steps_removed(), view_config.max_step_in);
+                  matched.EdgeCount(), view_->steps_removed(), settings.view.max_step_in);
 
     pose_ = std::make_unique<runtime::Writer<msgs::LocalizationPosePubSubType>>(
         ctx.participant, "localization/pose");
@@ -129,7 +101,7 @@ class LocalizerNode : public runtime::ProcessNode {
     odometry_ = std::make_unique<runtime::Reader<msgs::OdometryPubSubType>>(
         ctx.participant, ctx.executor, "robot/odometry",
         [this](const msgs::Odometry& o) { OnOdometry(o); });
-    ctx.executor.AddTimer(1.0 / publish_rate_hz, [this] { PublishPose(); });
+    ctx.executor.AddTimer(1.0 / settings.publish_rate_hz, [this] { PublishPose(); });
   }
 
   void Activate() override {

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "common/config_paths.h"
 #include "common/strict_yaml.h"
 
 namespace stickrep::runtime {
@@ -23,10 +24,7 @@ struct SystemConfig {
   static SystemConfig LoadFile(const std::string& path);
 };
 
-// `path` made absolute against the directory of `relative_to_file` (unless already absolute).
-std::string ResolvePath(const std::string& path, const std::string& relative_to_file);
-
-// The configs/ directory: $STICKREP_CONFIG_DIR if set, else the source tree's configs/.
-std::string DefaultConfigDir();
+using stickrep::DefaultConfigDir;
+using stickrep::ResolvePath;
 
 }  // namespace stickrep::runtime

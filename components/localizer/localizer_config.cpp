@@ -1,0 +1,48 @@
+#include "localizer/localizer_config.h"
+
+#include "common/config_paths.h"
+#include "recovery/error_model.h"
+#include "stickrep/sequence_matcher.h"
+
+namespace stickrep::localizer {
+
+LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
+  LocalizerSettings s;
+  LocalizerConfig& config = s.localizer;
+  const std::string method = c.Get<std::string>("method");
+  if (method == "bayes") {
+    config.method = MatchMethod::kBayes;
+  } else if (method == "deterministic") {
+    config.method = MatchMethod::kDeterministic;
+  } else {
+    c.Fail("method", "'" + method + "' is not one of: deterministic, bayes");
+  }
+  s.error_model_file = ResolvePath(c.Get<std::string>("error_model_file"), c.file());
+  s.study_file = ResolvePath(c.Get<std::string>("study_file"), c.file());
+  config.tolerance.metric_rel = c.Get<double>("metric_tolerance_rel", 0.0, 1.0);
+  config.tolerance.metric_abs_in = c.Get<double>("metric_tolerance_abs_in", 0.0, 120.0, "in");
+  config.tolerance.angle_deg = 20.0;  // corners are sensed as turns of the odometry heading
+  config.assembler.same_door_in = c.Get<double>("same_door_in", 1.0, 60.0, "in");
+  config.assembler.out_of_view_in = c.Get<double>("out_of_view_in", 6.0, 240.0, "in");
+  config.assembler.min_frames = c.Get<int>("min_frames", 1, 20);
+  config.assembler.min_wall_in = c.Get<double>("min_wall_in", 0.0, 60.0, "in");
+  config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
+  s.view.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
+  s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
+  c.Finish();
+  return s;
+}
+
+LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map::Map& matched) {
+  LocalizerConfig config = settings.localizer;
+  if (config.method == MatchMethod::kBayes) {
+    // The observation model: the landmark pipeline's confusion and the sensing noise.
+    const recovery::ErrorModel errors = recovery::LoadErrorModel(settings.error_model_file);
+    const recovery::StudyConfig study = recovery::LoadStudyConfig(settings.study_file);
+    const map::MatchIndex index(matched);
+    config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise, study.bayes};
+  }
+  return config;
+}
+
+}  // namespace stickrep::localizer

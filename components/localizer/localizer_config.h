@@ -1,0 +1,32 @@
+#pragma once
+
+#include <string>
+
+#include "common/strict_yaml.h"
+#include "localizer/localizer.h"
+#include "stickrep/hallway_view.h"
+#include "stickrep/map.h"
+
+namespace stickrep::localizer {
+
+// The localizer process's settings (configs/localizer.yaml). The Bayes matcher's
+// observation model is read from the files named here once the map is known
+// (MakeLocalizerConfig).
+struct LocalizerSettings {
+  LocalizerConfig localizer;   // everything but the Bayes model
+  map::HallwayViewConfig view;
+  std::string error_model_file;  // resolved against the settings file
+  std::string study_file;
+  double publish_rate_hz = 2.0;
+};
+
+// Reads the `localizer` section; every key required, unknown keys rejected (InputError with
+// file, line and key).
+LocalizerSettings LoadLocalizerSettings(const StrictYaml& section);
+
+// The localizer's configuration for matching against `matched` (the hallway view of the
+// map): for the Bayes method, the observation model from the error model and study files
+// (their errors are InputErrors naming those files).
+LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map::Map& matched);
+
+}  // namespace stickrep::localizer
