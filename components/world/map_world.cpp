@@ -42,24 +42,14 @@ double RayToSegment(const Eigen::Vector2d& origin, const Eigen::Vector2d& u,
   return t;
 }
 
-// A straight run of ring edges [first, last] and its line, in ring order.
-struct Run {
-  int first = 0;
-  int last = 0;
-  Eigen::Vector2d start_in{0.0, 0.0};  // node `first`
-  Eigen::Vector2d end_in{0.0, 0.0};    // node `last + 1`
-  Eigen::Vector2d dir{1.0, 0.0};       // unit, start -> end
-  double length_in = 0.0;
-};
-
 Eigen::Vector2d NodePoint(const map::Ring& ring, int node) {
   const map::Node& n = ring.nodes[static_cast<size_t>(node) % ring.nodes.size()];
   return {n.x_in, n.y_in};
 }
 
-// Splits a ring into straight runs. A closed ring's first run may continue over node 0; it
-// is then started at the first corner so that no run wraps.
-std::vector<Run> SplitIntoRuns(const map::Ring& ring) {
+}  // namespace
+
+std::vector<WallRun> SplitIntoWallRuns(const map::Ring& ring) {
   const int n = ring.EdgeCount();
   std::vector<Eigen::Vector2d> dir(n);
   for (int i = 0; i < n; ++i) {
@@ -83,8 +73,8 @@ std::vector<Run> SplitIntoRuns(const map::Ring& ring) {
       }
     }
   }
-  std::vector<Run> runs;
-  Run current;
+  std::vector<WallRun> runs;
+  WallRun current;
   current.first = start;
   for (int k = 0; k < n; ++k) {
     const int i = (start + k) % n;
@@ -93,11 +83,11 @@ std::vector<Run> SplitIntoRuns(const map::Ring& ring) {
     if (corner_after) {
       current.last = i;
       runs.push_back(current);
-      current = Run{};
+      current = WallRun{};
       current.first = (i + 1) % n;
     }
   }
-  for (Run& r : runs) {
+  for (WallRun& r : runs) {
     r.start_in = NodePoint(ring, r.first);
     // A run may wrap past the last edge of a closed ring.
     r.end_in = NodePoint(ring, r.last + 1);
@@ -107,8 +97,108 @@ std::vector<Run> SplitIntoRuns(const map::Ring& ring) {
   return runs;
 }
 
+std::vector<WallRun> WithoutSteps(std::vector<WallRun> runs, bool closed, double max_step_in) {
+  // cos 5°: the runs either side of a step are parallel, the same way.
+  constexpr double kParallelCos = 0.996;
+  for (bool changed = true; changed;) {
+    changed = false;
+    const int m = static_cast<int>(runs.size());
+    if (m < 3) break;
+    for (int j = 0; j < m; ++j) {
+      if (!closed && (j == 0 || j == m - 1)) continue;
+      const int before = (j + m - 1) % m, after = (j + 1) % m;
+      const WallRun& prev = runs[before];
+      const WallRun& next = runs[after];
+      if (runs[j].length_in >= max_step_in || prev.dir.dot(next.dir) < kParallelCos) continue;
+      // One run on the longer neighbour's line, from abreast of prev's start to abreast of
+      // next's end.
+      const WallRun& keep = prev.length_in >= next.length_in ? prev : next;
+      WallRun merged;
+      merged.first = prev.first;
+      merged.last = next.last;
+      merged.dir = keep.dir;
+      merged.start_in = keep.start_in + keep.dir * (prev.start_in - keep.start_in).dot(keep.dir);
+      merged.end_in = keep.start_in + keep.dir * (next.end_in - keep.start_in).dot(keep.dir);
+      merged.length_in = (merged.end_in - merged.start_in).dot(merged.dir);
+      // Replace prev, the step and next (which may wrap round a closed ring) by the merge.
+      std::vector<WallRun> out;
+      for (int k = 0; k < m; ++k) {
+        if (k == before) {
+          out.push_back(merged);
+        } else if (k != j && k != after) {
+          out.push_back(runs[k]);
+        }
+      }
+      if (after < before) {
+        // The merge wrapped: keep the ring's run order starting after it.
+        std::rotate(out.begin(), out.end() - 1, out.end());
+      }
+      runs = std::move(out);
+      changed = true;
+      break;
+    }
+  }
+  return runs;
+}
+
+std::vector<OffsetSegment> OffsetRuns(const std::vector<WallRun>& all_runs, bool closed,
+                                      double distance_in) {
+  struct Indexed {
+    WallRun run;
+    int index;
+  };
+  std::vector<Indexed> runs;
+  for (int i = 0; i < static_cast<int>(all_runs.size()); ++i) runs.push_back({all_runs[i], i});
+  auto offset_point = [&](const WallRun& r) -> Eigen::Vector2d {
+    return r.start_in + Left(r.dir) * distance_in;
+  };
+  // Vertex between offset lines of runs a and b (b follows a).
+  auto mitre = [&](const WallRun& a, const WallRun& b) -> Eigen::Vector2d {
+    const Eigen::Vector2d pa = offset_point(a);
+    const Eigen::Vector2d pb = offset_point(b);
+    const double denom = Cross(a.dir, b.dir);
+    if (std::abs(denom) < 1e-9) {
+      // Parallel lines: the shared node's offset along b's normal.
+      return b.start_in + Left(b.dir) * distance_in;
+    }
+    const double t = Cross(pb - pa, b.dir) / denom;
+    return pa + a.dir * t;
+  };
+  std::vector<OffsetSegment> segments;
+  for (int guard = 0; guard < 10000; ++guard) {
+    const int m = static_cast<int>(runs.size());
+    if (m == 0 || (closed && m < 3)) return {};
+    segments.clear();
+    int collapsed = -1;
+    for (int j = 0; j < m; ++j) {
+      const WallRun& run = runs[j].run;
+      Eigen::Vector2d a, b;
+      if (j == 0 && !closed) {
+        a = offset_point(run);
+      } else {
+        a = mitre(runs[(j + m - 1) % m].run, run);
+      }
+      if (j == m - 1 && !closed) {
+        b = run.end_in + Left(run.dir) * distance_in;
+      } else {
+        b = mitre(run, runs[(j + 1) % m].run);
+      }
+      if ((b - a).dot(run.dir) < kMinOffsetSegmentIn) {
+        collapsed = j;
+        break;
+      }
+      segments.push_back({a, b, runs[j].index});
+    }
+    if (collapsed < 0) return segments;
+    runs.erase(runs.begin() + collapsed);
+  }
+  return {};
+}
+
+namespace {
+
 // The edges of a run in order (handles wrap-around on closed rings).
-std::vector<int> RunEdges(const map::Ring& ring, const Run& run) {
+std::vector<int> RunEdges(const map::Ring& ring, const WallRun& run) {
   std::vector<int> out;
   const int n = ring.EdgeCount();
   for (int i = run.first;; i = (i + 1) % n) {
@@ -116,58 +206,6 @@ std::vector<int> RunEdges(const map::Ring& ring, const Run& run) {
     if (i == run.last) break;
   }
   return out;
-}
-
-// The polyline of a wall parallel to the ring at `width_in` on its hallway side, as a list
-// of segments in ring order. Corners are mitred; segments that collapse (shorter than
-// kMinOffsetSegmentIn or reversed, as the offset of a narrow pilaster or alcove does) are
-// dropped and their neighbours re-mitred, the usual way of offsetting a polygon.
-std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> OffsetPolyline(
-    const std::vector<Run>& all_runs, bool closed, double width_in) {
-  std::vector<Run> runs = all_runs;
-  auto offset_point = [&](const Run& r) -> Eigen::Vector2d {
-    return r.start_in + Left(r.dir) * width_in;
-  };
-  // Vertex between offset lines of runs a and b (b follows a).
-  auto mitre = [&](const Run& a, const Run& b) -> Eigen::Vector2d {
-    const Eigen::Vector2d pa = offset_point(a);
-    const Eigen::Vector2d pb = offset_point(b);
-    const double denom = Cross(a.dir, b.dir);
-    if (std::abs(denom) < 1e-9) {
-      // Parallel lines: the shared node's offset along b's normal.
-      return b.start_in + Left(b.dir) * width_in;
-    }
-    const double t = Cross(pb - pa, b.dir) / denom;
-    return pa + a.dir * t;
-  };
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;
-  for (int guard = 0; guard < 10000; ++guard) {
-    const int m = static_cast<int>(runs.size());
-    if (m == 0 || (closed && m < 3)) return {};
-    segments.clear();
-    int collapsed = -1;
-    for (int j = 0; j < m; ++j) {
-      Eigen::Vector2d a, b;
-      if (j == 0 && !closed) {
-        a = offset_point(runs[0]);
-      } else {
-        a = mitre(runs[(j + m - 1) % m], runs[j]);
-      }
-      if (j == m - 1 && !closed) {
-        b = runs[j].end_in + Left(runs[j].dir) * width_in;
-      } else {
-        b = mitre(runs[j], runs[(j + 1) % m]);
-      }
-      if ((b - a).dot(runs[j].dir) < kMinOffsetSegmentIn) {
-        collapsed = j;
-        break;
-      }
-      segments.emplace_back(a, b);
-    }
-    if (collapsed < 0) return segments;
-    runs.erase(runs.begin() + collapsed);
-  }
-  return {};
 }
 
 DoorPattern DoorPatternOf(const std::string& pattern) {
@@ -185,6 +223,9 @@ void CheckOptions(const MapWorldOptions& o) {
     throw std::invalid_argument(
         "map world: hallway_width_in, wall_height_in, room_depth_in and poster_width_in must be "
         "> 0 in");
+  }
+  if (!(o.opposite_wall_max_step_in >= 0.0)) {
+    throw std::invalid_argument("map world: opposite_wall_max_step_in must be >= 0 in");
   }
   if (!(o.open_door_fraction >= 0.0 && o.open_door_fraction <= 1.0) ||
       !(o.open_inward_share >= 0.0 && o.open_inward_share <= 1.0)) {
@@ -213,15 +254,15 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, bool o
     double s0_in, s1_in;  // door span along the wall, from its a_in end
   };
   std::vector<PendingRoom> rooms;
-  std::vector<std::vector<Run>> runs_of_ring;
+  std::vector<std::vector<WallRun>> runs_of_ring;
 
   for (int r : ring_indices) {
     const map::Ring& ring = map.ring(r);
-    const std::vector<Run> runs = SplitIntoRuns(ring);
+    const std::vector<WallRun> runs = SplitIntoWallRuns(ring);
     runs_of_ring.push_back(runs);
     const size_t first_geometry = out.edges.size();
     out.edges.resize(first_geometry + ring.edges.size());
-    for (const Run& run : runs) {
+    for (const WallRun& run : runs) {
       // The wall runs against ring order so that the hallway is on its right (world.h).
       const int wall_index = static_cast<int>(world.walls.size());
       WallSegment wall;
@@ -315,16 +356,19 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, bool o
     }
   }
 
-  // The opposite hallway walls: parallel to each ring at the hallway width.
+  // The opposite hallway walls: parallel to each ring at the hallway width. A shallow step
+  // of the mapped wall (a pilaster, an alcove) is that wall's own: the opposite wall runs
+  // straight past it.
   if (opposite) {
     for (size_t k = 0; k < ring_indices.size(); ++k) {
       const map::Ring& ring = map.ring(ring_indices[k]);
-      for (const auto& [a, b] :
-           OffsetPolyline(runs_of_ring[k], ring.closed, options.hallway_width_in)) {
+      const std::vector<WallRun> straight =
+          WithoutSteps(runs_of_ring[k], ring.closed, options.opposite_wall_max_step_in);
+      for (const OffsetSegment& s : OffsetRuns(straight, ring.closed, options.hallway_width_in)) {
         // In ring order the mapped wall is on this wall's right: the hallway is there.
         WallSegment wall;
-        wall.a_in = a;
-        wall.b_in = b;
+        wall.a_in = s.a_in;
+        wall.b_in = s.b_in;
         wall.height_in = options.wall_height_in;
         wall.surface = options.opposite_surface;
         wall.intensity = options.opposite_wall_intensity;

@@ -27,6 +27,9 @@ struct MapWorldOptions {
   // Distance from a mapped wall to the opposite wall it faces (when one is added).
   double hallway_width_in = 72.0;  // not in the text: a 6 ft corridor, as HallwayOptions
   OppositeWall opposite_wall = OppositeWall::kAuto;
+  // Steps of the mapped wall shorter than this (WithoutSteps) do not show in the opposite
+  // wall: 36 in, as map::HallwayViewConfig::max_step_in.
+  double opposite_wall_max_step_in = 36.0;
   double wall_height_in = 96.0;
   // Depth of the room behind a door (its back wall is what an open door shows). Clipped so
   // the back wall stays inside the solid behind the ring.
@@ -53,6 +56,42 @@ struct MapWorldOptions {
   int window_intensity = 215;
   int ribbon_intensity = 60;  // a dark full-height strip: a vertical edge ribbon by design
 };
+
+// A straight run of ring edges [first, last] (ring-local indices, ring order; on a closed
+// ring the run may wrap past the last edge) and its line.
+struct WallRun {
+  int first = 0;
+  int last = 0;
+  Eigen::Vector2d start_in{0.0, 0.0};  // node `first` (or abreast of it, after WithoutSteps)
+  Eigen::Vector2d end_in{0.0, 0.0};    // node `last + 1` (or abreast of it)
+  Eigen::Vector2d dir{1.0, 0.0};       // unit, start -> end
+  double length_in = 0.0;
+};
+
+// Splits a ring into straight runs of collinear edges. A closed ring's first run starts
+// after its first corner so that no run wraps. Throws std::invalid_argument for an edge
+// whose nodes coincide.
+std::vector<WallRun> SplitIntoWallRuns(const map::Ring& ring);
+
+// The runs as a hallway follower passes them: a run shorter than `max_step_in` between two
+// runs going the same way (a step across the hallway: a pilaster, an alcove) is dropped and
+// its neighbours become one run on the line of the longer of them. Repeats until no such
+// step is left (an alcove's two steps go one after the other).
+std::vector<WallRun> WithoutSteps(std::vector<WallRun> runs, bool closed, double max_step_in);
+
+// One segment of a polyline parallel to a ring's runs, and the run it is parallel to.
+struct OffsetSegment {
+  Eigen::Vector2d a_in{0.0, 0.0};
+  Eigen::Vector2d b_in{0.0, 0.0};
+  int run = 0;  // index into the runs given
+};
+
+// The polyline parallel to `runs` at `distance_in` on their hallway side (left of ring
+// order), in ring order. Corners are mitred; a segment that collapses (shorter than an inch
+// or reversed, as the offset of a narrow pilaster or alcove is) is dropped and its
+// neighbours re-mitred, the usual way of offsetting a polygon. Empty when nothing is left.
+std::vector<OffsetSegment> OffsetRuns(const std::vector<WallRun>& runs, bool closed,
+                                      double distance_in);
 
 // A map edge: ring index and edge index within the ring.
 struct MapEdgeRef {

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -75,6 +76,64 @@ TEST(MapWorldTest, HallwayIsOnTheLeftOfRingOrderAndBoundedByTheOppositeWall) {
   const auto east = scene.Raycast({150.0, 136.0}, {1.0, 0.0}, 1000.0);
   ASSERT_TRUE(east.has_value());
   EXPECT_NEAR(east->point_in.x(), 172.0, 1e-6);
+}
+
+// A 400 in square walked with the hallway inside, an alcove 13 in wide and 8 in deep set
+// into its first side at x = 200.
+map::Ring SquareWithAlcove() {
+  const double xs[] = {0, 200, 200, 213, 213, 400, 400, 0};
+  const double ys[] = {0, 0, -8, -8, 0, 0, 400, 400};
+  map::Ring ring;
+  ring.id = "alcove";
+  ring.closed = true;
+  for (int i = 0; i < 8; ++i) {
+    map::Node n;
+    n.x_in = xs[i];
+    n.y_in = ys[i];
+    ring.nodes.push_back(n);
+    const double dx = xs[(i + 1) % 8] - xs[i], dy = ys[(i + 1) % 8] - ys[i];
+    ring.edges.push_back(map::Edge::Wall(std::hypot(dx, dy)));
+  }
+  return ring;
+}
+
+TEST(MapWorldTest, ShallowStepsArePassedStraightAndTheOffsetFollowsTheRuns) {
+  const map::Ring ring = SquareWithAlcove();
+  ASSERT_EQ(SplitIntoWallRuns(ring).size(), 8u);
+  const std::vector<WallRun> runs = WithoutSteps(SplitIntoWallRuns(ring), true, 36.0);
+  ASSERT_EQ(runs.size(), 4u);
+  // The alcove's side's three runs are one, on the line of the longer wall (y = 0).
+  const auto side = std::find_if(runs.begin(), runs.end(), [](const WallRun& r) {
+    return std::abs(r.dir.y()) < 1e-9 && r.dir.x() > 0.0;
+  });
+  ASSERT_NE(side, runs.end());
+  EXPECT_THAT(side->start_in.y(), DoubleNear(0.0, 1e-9));
+  EXPECT_THAT(side->length_in, DoubleNear(400.0, 1e-9));
+  // Deeper steps stay: with a 5 in limit every corner is kept.
+  EXPECT_EQ(WithoutSteps(SplitIntoWallRuns(ring), true, 5.0).size(), 8u);
+
+  const std::vector<OffsetSegment> axis = OffsetRuns(runs, true, 60.0);
+  ASSERT_EQ(axis.size(), 4u);
+  const OffsetSegment& along = axis[static_cast<size_t>(side - runs.begin())];
+  EXPECT_THAT(along.a_in.x(), DoubleNear(60.0, 1e-9));
+  EXPECT_THAT(along.a_in.y(), DoubleNear(60.0, 1e-9));
+  EXPECT_THAT(along.b_in.x(), DoubleNear(340.0, 1e-9));
+  EXPECT_EQ(along.run, static_cast<int>(side - runs.begin()));
+}
+
+TEST(MapWorldTest, OppositeWallRunsStraightPastAnAlcove) {
+  const map::Map map(map::MapInfo{"alcove", "", "", std::nullopt}, {SquareWithAlcove()});
+  MapWorldOptions options;
+  options.hallway_width_in = 120.0;
+  options.opposite_wall = OppositeWall::kAlways;
+  std::mt19937_64 rng(1);
+  const MapWorld mw = BuildRingWorld(map, 0, options, rng);
+  EXPECT_EQ(mw.opposite_wall_count, 4);
+  const Scene scene(mw.world);
+  // Abreast of the alcove the opposite wall stands 120 in from the mapped line, not 128.
+  const auto north = scene.Raycast({206.0, 60.0}, {0.0, 1.0}, 1000.0);
+  ASSERT_TRUE(north.has_value());
+  EXPECT_NEAR(north->point_in.y(), 120.0, 1e-6);
 }
 
 TEST(MapWorldTest, CameraInTheHallwaySeesTheMappedDoorWithItsClass) {
