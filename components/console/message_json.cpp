@@ -195,7 +195,10 @@ json ToJson(const msgs::ComponentStatus& m) {
 json ToJson(const msgs::GroundTruth& m) {
   return {{"header", Header(m.header())},   {"pose", Pose(m.pose())},
           {"ring_id", m.ring_id()},         {"edge_index", m.edge_index()},
-          {"offset_in", m.offset_in()},     {"distance_in", m.distance_in()}};
+          {"offset_in", m.offset_in()},     {"distance_in", m.distance_in()},
+          {"lateral_offset_in", m.lateral_offset_in()},
+          {"heading_error_deg", m.heading_error_deg()},
+          {"collisions", m.collisions()}};
 }
 
 }  // namespace stickrep::console

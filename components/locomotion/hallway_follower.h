@@ -35,6 +35,9 @@ namespace stickrep::locomotion {
 struct SonarRange {
   double range_in = 0.0;  // from the transducer face
   bool valid = false;     // false: no echo, out of range, outside the footprint, malformed
+  // An echo in the measuring range that the gate set aside as outside the accurate
+  // footprint (§4.3): its range is rough, but something is there.
+  bool outside_footprint = false;
 };
 
 // Tuning of the hallway follower. The ring geometry defaults follow configs/robot.yaml
@@ -234,6 +237,10 @@ class HallwayFollower {
     heading_known_ = false;
   }
   double last_speed_ftps() const { return last_speed_ftps_; }
+  // The heading error the controller steers on: the last measured one carried forward with
+  // the turn commanded since; only meaningful when heading_known().
+  bool heading_known() const { return heading_known_; }
+  double heading_error_rad() const { return heading_rad_; }
 
  private:
   HallwayFollowerConfig config_;

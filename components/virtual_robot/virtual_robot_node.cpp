@@ -21,6 +21,12 @@ namespace stickrep::virtual_robot {
 
 namespace {
 
+// The navigation envelope (§6.4.2) is judged away from corners, where the robot turns
+// instead of following (8 ft), and once the robot has had room to align from its start
+// (20 ft travelled).
+constexpr double kEnvelopeCornerDistanceIn = 96.0;
+constexpr double kEnvelopeSettleDistanceIn = 240.0;
+
 class VirtualRobotNode : public runtime::ProcessNode {
  public:
   void Configure(runtime::NodeContext& ctx) override {
@@ -41,6 +47,14 @@ class VirtualRobotNode : public runtime::ProcessNode {
     world.image_noise_sigma = c.Get<double>("image_noise_sigma", 0.0, 50.0, "grey levels");
     world.sonar_surface_errors = c.Get<bool>("sonar_surface_errors");
     world.wheel_slip_stddev = c.Get<double>("wheel_slip_stddev", 0.0, 0.2);
+    const double max_offset_in = c.Get<double>("start_lateral_offset_max_in", 0.0, 120.0, "in");
+    const double max_heading_deg = c.Get<double>("start_heading_error_max_deg", 0.0, 25.0, "deg");
+    if (max_offset_in > world.hallway_width_in / 2.0 - 12.0) {
+      c.Fail("start_lateral_offset_max_in",
+             fmt::format("must leave a foot between the base centre and the wall: at most {:g} in "
+                         "in a {:g} in hallway",
+                         world.hallway_width_in / 2.0 - 12.0, world.hallway_width_in));
+    }
     rtf_ = c.Get<double>("real_time_factor", 0.1, 50.0);
     const double sim_rate_hz = c.Get<double>("sim_rate_hz", 1.0, 1000.0, "Hz");
     const double encoder_rate_hz = c.Get<double>("encoder_rate_hz", 1.0, 200.0, "Hz");
@@ -63,16 +77,28 @@ class VirtualRobotNode : public runtime::ProcessNode {
       std::mt19937_64 pick(seed);
       start_in = std::uniform_real_distribution<double>(0.0, length_in)(pick);
     }
+    // Off the axis and turned from it, so aligning and centring (A3, A4) has work to do.
+    std::mt19937_64 pose_pick(seed ^ 0x5DEECE66Dull);
+    world.start_lateral_offset_in =
+        std::uniform_real_distribution<double>(-max_offset_in, max_offset_in)(pose_pick);
+    world.start_heading_error_deg =
+        std::uniform_real_distribution<double>(-max_heading_deg, max_heading_deg)(pose_pick);
     sim_ = std::make_unique<WorldSim>(map, robot, world, start_in, seed);
     const SimTruth t = sim_->Truth();
-    start_check_ = fmt::format("start ring '{}' edge {} + {:.1f} in (seed {})", sim_->ring_id(),
-                               t.edge_index, t.offset_in, seed);
+    start_check_ = fmt::format(
+        "start ring '{}' edge {} + {:.1f} in, {:+.1f} in off the axis, heading {:+.1f} deg "
+        "(seed {})",
+        sim_->ring_id(), t.edge_index, t.offset_in, t.lateral_offset_in,
+        RadToDeg(t.heading_error_rad), seed);
     path_.push_back({t.X_WR.x_in, t.X_WR.y_in});
     markers_.push_back({t.X_WR.x_in, t.X_WR.y_in, "start"});
     ctx.log->info("simulating ring '{}' of {} ({:.0f} in), {:.0f} in wide hallway, real-time "
-                  "factor {:g}; seed {}; start {:.1f} in = edge {} + {:.1f} in",
+                  "factor {:g}; seed {}; start {:.1f} in = edge {} + {:.1f} in, {:+.1f} in off the "
+                  "hallway axis (drawn within +-{:g}), heading error {:+.1f} deg (within +-{:g})",
                   sim_->ring_id(), map.info().name, sim_->ring_length_in(),
-                  world.hallway_width_in, rtf_, seed, start_in, t.edge_index, t.offset_in);
+                  world.hallway_width_in, rtf_, seed, start_in, t.edge_index, t.offset_in,
+                  t.lateral_offset_in, max_offset_in, RadToDeg(t.heading_error_rad),
+                  max_heading_deg);
 
     encoders_ = std::make_unique<runtime::Writer<msgs::EncoderReadingPubSubType>>(
         ctx.participant, "device/base/encoders");
@@ -124,10 +150,12 @@ class VirtualRobotNode : public runtime::ProcessNode {
     const SimTruth t = sim_->Truth();
     std::string checks;
     for (const std::string& c : pose_checks_) checks += "; " + c;
-    return fmt::format("{}; {} frames, {} sonar scans served; travelled {:.1f} in, now on edge "
-                       "{} of ring '{}'{}",
-                       start_check_, frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id(),
-                       checks.empty() ? "; no pose recovered" : checks);
+    return fmt::format(
+        "{}; {} frames, {} sonar scans served; travelled {:.1f} in, now on edge {} of ring '{}'; "
+        "{} collisions; after 20 ft, beyond 8 ft of corners: max |offset| {:.1f} in, max "
+        "|heading error| {:.1f} deg{}",
+        start_check_, frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id(), t.collisions,
+        max_offset_in_, max_heading_deg_, checks.empty() ? "; no pose recovered" : checks);
   }
 
  private:
@@ -200,6 +228,19 @@ class VirtualRobotNode : public runtime::ProcessNode {
     if (now - last_wheels_ns_ > wheel_timeout_s_ * 1e9) left_ftps_ = right_ftps_ = 0.0;
     sim_->Step((now - last_step_ns_) * 1e-9 * rtf_, left_ftps_, right_ftps_);
     last_step_ns_ = now;
+    const SimTruth t = sim_->Truth();
+    if (t.collisions > collisions_) {
+      collisions_ = t.collisions;
+      ctx_->log->warn("collision: the base touched a wall at ({:.0f}, {:.0f}) in, {:+.1f} in off "
+                      "the hallway axis; it stalls there (collision {})",
+                      t.X_WR.x_in, t.X_WR.y_in, t.lateral_offset_in, t.collisions);
+    }
+    // The navigation envelope of §6.4.2 is judged on straight runs, away from corners.
+    if (t.corner_distance_in > kEnvelopeCornerDistanceIn &&
+        t.distance_in > kEnvelopeSettleDistanceIn) {
+      max_offset_in_ = std::max(max_offset_in_, std::abs(t.lateral_offset_in));
+      max_heading_deg_ = std::max(max_heading_deg_, std::abs(RadToDeg(t.heading_error_rad)));
+    }
   }
 
   void PublishEncoders() {
@@ -217,6 +258,9 @@ class VirtualRobotNode : public runtime::ProcessNode {
     g.edge_index(static_cast<uint32_t>(t.edge_index));
     g.offset_in(t.offset_in);
     g.distance_in(t.distance_in);
+    g.lateral_offset_in(t.lateral_offset_in);
+    g.heading_error_deg(RadToDeg(t.heading_error_rad));
+    g.collisions(static_cast<uint32_t>(t.collisions));
     if (std::hypot(t.X_WR.x_in - path_.back().first, t.X_WR.y_in - path_.back().second) > 6.0) {
       path_.push_back({t.X_WR.x_in, t.X_WR.y_in});
     }
@@ -253,6 +297,8 @@ class VirtualRobotNode : public runtime::ProcessNode {
   double left_ftps_ = 0.0, right_ftps_ = 0.0;
   int64_t last_wheels_ns_ = 0, last_step_ns_ = 0;
   uint64_t frames_ = 0, scans_ = 0;
+  int collisions_ = 0;
+  double max_offset_in_ = 0.0, max_heading_deg_ = 0.0;
   std::unique_ptr<map::Map> map_;
   std::string start_check_;
   std::vector<std::string> pose_checks_;

@@ -2,11 +2,56 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "common/units.h"
+#include "world/diff_drive.h"
 
 namespace stickrep::virtual_robot {
+
+namespace {
+
+// Panels standing lower than this can stop the base (walls, frames, door leaves); door
+// headers start above it. Not in the text: a LabMate with its sonar head is about 3 ft tall.
+constexpr double kBaseHeightIn = 36.0;
+// Steps of the wall shorter than this are passed straight: the axis and the opposite wall
+// run past them (world::MapWorldOptions::opposite_wall_max_step_in).
+constexpr double kMaxStepIn = 36.0;
+
+Eigen::Vector2d Unit(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  return d.norm() > 0.0 ? Eigen::Vector2d(d / d.norm()) : Eigen::Vector2d(1.0, 0.0);
+}
+
+Eigen::Vector2d Left(const Eigen::Vector2d& u) { return {-u.y(), u.x()}; }
+
+double WrapPi(double a) { return std::remainder(a, 2.0 * kPi); }
+
+// Distance from p to the segment a-b, and the parameter of the foot (0 at a, 1 at b).
+double SegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                       const Eigen::Vector2d& b, double* t_out = nullptr) {
+  const Eigen::Vector2d d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  if (t_out) *t_out = t;
+  return (p - (a + t * d)).norm();
+}
+
+// Where the ray origin + t dir (t > 0) crosses the segment a-b, or a negative value.
+double RaySegment(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir,
+                  const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d e = b - a;
+  const double denom = dir.x() * e.y() - dir.y() * e.x();
+  if (std::abs(denom) < 1e-12) return -1.0;
+  const Eigen::Vector2d w = a - origin;
+  const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
+  const double s = (w.x() * dir.y() - w.y() * dir.x()) / denom;
+  if (t <= 1e-9 || s < 0.0 || s > 1.0) return -1.0;
+  return t;
+}
+
+}  // namespace
 
 WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
                    const WorldSimConfig& config, double start_offset_in, std::uint64_t seed)
@@ -30,32 +75,57 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   node_in_.emplace_back(last.x_in, last.y_in);
   edge_start_in_.push_back(s);
   length_in_ = s;
-  BuildAxis();
+  BuildAxis(ring);
 
   world::MapWorldOptions options;
   options.hallway_width_in = config.hallway_width_in;
   options.opposite_wall = world::OppositeWall::kAlways;
+  options.opposite_wall_max_step_in = kMaxStepIn;
   options.open_door_fraction = config.open_door_fraction;
   std::mt19937_64 world_rng(seed ^ 0x9E3779B97F4A7C15ull);
   scene_ = std::make_unique<world::Scene>(world::BuildRingWorld(map, ring_, options, world_rng).world);
+  for (int i = 0; i < static_cast<int>(scene_->panels().size()); ++i) {
+    const world::Panel& p = scene_->panels()[i];
+    if (p.acoustic && p.bottom_in < kBaseHeightIn) obstacle_panels_.push_back(i);
+  }
   camera_ = std::make_unique<world::CameraRenderer>(models_.camera);
   models_.base.slip_stddev = config.wheel_slip_stddev;
-  position_in_ = PathFromRing(start_offset_in);
+  footprint_radius_in_ = robot.sonar_ring.head_radius_in;
+
+  X_WR_ = AxisPoseAbreast(start_offset_in);
+  const double a = X_WR_.theta_rad + kPi;  // the axis direction in ring order
+  const Eigen::Vector2d toward_wall = -Left({std::cos(a), std::sin(a)});
+  const Eigen::Vector2d p = X_WR_.position() + toward_wall * config.start_lateral_offset_in;
+  X_WR_ = world::Pose2d{p.x(), p.y(),
+                        WrapPi(X_WR_.theta_rad + DegToRad(config.start_heading_error_deg))};
+  if (Clearance(X_WR_.position()) < footprint_radius_in_) {
+    throw std::invalid_argument("the start pose (" + std::to_string(config.start_lateral_offset_in) +
+                                " in off the hallway axis) puts the base against a wall");
+  }
 }
 
-double WorldSim::Wrap(double p) const {
-  const double total = axis_start_in_.back();
-  if (!closed_) return std::clamp(p, 0.0, total);
-  p = std::fmod(p, total);
-  return p < 0.0 ? p + total : p;
+void WorldSim::BuildAxis(const map::Ring& ring) {
+  // The axis the follower keeps to: midway between the mapped wall, its shallow steps passed
+  // straight, and the opposite wall (built from the same runs, world::BuildRingWorld).
+  const std::vector<world::WallRun> runs =
+      world::WithoutSteps(world::SplitIntoWallRuns(ring), closed_, kMaxStepIn);
+  axis_ = world::OffsetRuns(runs, closed_, 0.5 * config_.hallway_width_in);
+  if (axis_.empty()) throw std::invalid_argument("ring '" + ring.id + "' has no hallway axis");
+  axis_of_edge_.assign(edge_count(), -1);
+  for (int j = 0; j < static_cast<int>(axis_.size()); ++j) {
+    const world::WallRun& run = runs[axis_[j].run];
+    for (int e = run.first;; e = (e + 1) % edge_count()) {
+      axis_of_edge_[e] = j;
+      if (e == run.last) break;
+    }
+  }
+  axis_start_in_.assign(1, 0.0);
+  for (const world::OffsetSegment& seg : axis_) {
+    axis_start_in_.push_back(axis_start_in_.back() + (seg.b_in - seg.a_in).norm());
+  }
 }
 
-int WorldSim::SegmentAt(double p) const {
-  const auto it = std::upper_bound(axis_start_in_.begin(), axis_start_in_.end(), p);
-  return std::clamp(static_cast<int>(it - axis_start_in_.begin()) - 1, 0, edge_count() - 1);
-}
-
-double WorldSim::PathFromRing(double s) const {
+world::Pose2d WorldSim::AxisPoseAbreast(double s) const {
   if (closed_) {
     s = std::fmod(s, length_in_);
     if (s < 0.0) s += length_in_;
@@ -65,7 +135,69 @@ double WorldSim::PathFromRing(double s) const {
   const int e = std::clamp(static_cast<int>(it - edge_start_in_.begin()) - 1, 0, edge_count() - 1);
   const double metric = edge_start_in_[e + 1] - edge_start_in_[e];
   const double f = metric > 0.0 ? (s - edge_start_in_[e]) / metric : 0.0;
-  return axis_start_in_[e] + f * (axis_start_in_[e + 1] - axis_start_in_[e]);
+  const Eigen::Vector2d on_wall = node_in_[e] + f * (node_in_[e + 1] - node_in_[e]);
+  // The axis segment of the edge's run; an edge whose run collapsed (a jog narrower than
+  // the hallway) takes the nearest segment.
+  int j = axis_of_edge_[e];
+  if (j < 0) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < static_cast<int>(axis_.size()); ++k) {
+      const double d = SegmentDistance(on_wall, axis_[k].a_in, axis_[k].b_in);
+      if (d < nearest) nearest = d, j = k;
+    }
+  }
+  const Eigen::Vector2d a = axis_[j].a_in, b = axis_[j].b_in;
+  double t = 0.0;
+  SegmentDistance(on_wall, a, b, &t);
+  const Eigen::Vector2d p = a + t * (b - a);
+  const Eigen::Vector2d u = Unit(a, b);
+  // Facing against ring order puts the wall on the base's left, where the camera looks.
+  return world::Pose2d{p.x(), p.y(), std::atan2(-u.y(), -u.x())};
+}
+
+double WorldSim::Clearance(const Eigen::Vector2d& p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (int i : obstacle_panels_) {
+    const world::Panel& panel = scene_->panels()[i];
+    best = std::min(best, SegmentDistance(p, panel.p0_in, panel.p1_in));
+  }
+  return best;
+}
+
+void WorldSim::Step(double dt_s, double left_ftps, double right_ftps) {
+  if (!(dt_s > 0.0) || !std::isfinite(left_ftps) || !std::isfinite(right_ftps)) return;
+  const double vmax = models_.base.max_speed_ftps;
+  const double dl = FeetToInches(std::clamp(left_ftps, -vmax, vmax)) * dt_s;
+  const double dr = FeetToInches(std::clamp(right_ftps, -vmax, vmax)) * dt_s;
+  double slip_l = 0.0, slip_r = 0.0;
+  if (models_.base.slip_stddev > 0.0) {
+    std::normal_distribution<double> slip(0.0, models_.base.slip_stddev);
+    slip_l = slip(rng_);
+    slip_r = slip(rng_);
+  }
+  const world::Pose2d next = world::IntegrateWheels(X_WR_, dl * (1.0 + slip_l),
+                                                    dr * (1.0 + slip_r),
+                                                    models_.base.wheel_base_in);
+  const double clear_before = Clearance(X_WR_.position());
+  const double clear_after = Clearance(next.position());
+  if (clear_after < footprint_radius_in_ && clear_after < clear_before - 1e-9) {
+    // Against a wall: the base stalls, the wheels do not turn.
+    if (!in_contact_) ++collisions_;
+    in_contact_ = true;
+    return;
+  }
+  const Eigen::Vector2d moved = next.position() - X_WR_.position();
+  if (moved.norm() > 1e-12) last_motion_ = moved;
+  distance_in_ += moved.norm();
+  left_travel_in_ += dl;
+  right_travel_in_ += dr;
+  X_WR_ = next;
+  in_contact_ = clear_after < footprint_radius_in_;
+}
+
+void WorldSim::Teleport(double ring_position_in) {
+  X_WR_ = AxisPoseAbreast(ring_position_in);
+  in_contact_ = false;
 }
 
 double WorldSim::RingPosition() const {
@@ -73,94 +205,11 @@ double WorldSim::RingPosition() const {
   return edge_start_in_[t.edge_index] + t.offset_in;
 }
 
-namespace {
-
-Eigen::Vector2d Unit(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d d = b - a;
-  return d.norm() > 0.0 ? Eigen::Vector2d(d / d.norm()) : Eigen::Vector2d(1.0, 0.0);
-}
-
-Eigen::Vector2d Left(const Eigen::Vector2d& u) { return {-u.y(), u.x()}; }
-
-}  // namespace
-
-void WorldSim::BuildAxis() {
-  const double h = 0.5 * config_.hallway_width_in;
-  const int n = edge_count();
-  axis_in_.resize(n + 1);
-  for (int i = 0; i <= n; ++i) {
-    const bool has_before = closed_ || i > 0;
-    const bool has_after = closed_ || i < n;
-    const int before = (i - 1 + n) % n, after = i % n;
-    const Eigen::Vector2d node = node_in_[i];
-    if (!has_before || !has_after) {
-      const int e = has_after ? after : before;
-      axis_in_[i] = node + Left(Unit(node_in_[e], node_in_[e + 1])) * h;
-      continue;
-    }
-    const Eigen::Vector2d ua = Unit(node_in_[before], node_in_[before + 1]);
-    const Eigen::Vector2d ub = Unit(node_in_[after], node_in_[after + 1]);
-    const Eigen::Vector2d na = Left(ua), nb = Left(ub);
-    const double cross = ua.x() * ub.y() - ua.y() * ub.x();
-    Eigen::Vector2d m = node + na * h;
-    if (std::abs(cross) > 1e-6) {
-      // node + na h + ua t = node + nb h + ub u: the two offset lines meet at the mitre.
-      const Eigen::Vector2d rhs = (nb - na) * h;
-      const double t = (rhs.x() * ub.y() - rhs.y() * ub.x()) / cross;
-      m = node + na * h + ua * t;
-      // A jog shorter than the hallway is wide would throw the mitre far off: keep the
-      // axis near the node there.
-      if ((m - node).norm() > 3.0 * h) m = node + (na + nb).normalized() * h;
-    }
-    axis_in_[i] = m;
-  }
-  // Path length along the axis; a mitred segment that folds back (a jog narrower than the
-  // hallway) has no length of its own.
-  axis_start_in_.assign(n + 1, 0.0);
-  for (int e = 0; e < n; ++e) {
-    const Eigen::Vector2d u = Unit(node_in_[e], node_in_[e + 1]);
-    axis_start_in_[e + 1] = axis_start_in_[e] + std::max(0.0, (axis_in_[e + 1] - axis_in_[e]).dot(u));
-  }
-}
-
-world::Pose2d WorldSim::PoseAt(double path_in) const {
-  const int e = SegmentAt(path_in);
-  const Eigen::Vector2d u = Unit(node_in_[e], node_in_[e + 1]);
-  const Eigen::Vector2d p = axis_in_[e] + u * (path_in - axis_start_in_[e]);
-  // Facing against ring order puts the wall on the base's left, where the camera looks.
-  return world::Pose2d{p.x(), p.y(), std::atan2(-u.y(), -u.x())};
-}
-
-void WorldSim::Step(double dt_s, double left_ftps, double right_ftps) {
-  const double vmax = models_.base.max_speed_ftps;
-  const double dl = FeetToInches(std::clamp(left_ftps, -vmax, vmax)) * dt_s;
-  const double dr = FeetToInches(std::clamp(right_ftps, -vmax, vmax)) * dt_s;
-  left_travel_in_ += dl;
-  right_travel_in_ += dr;
-  std::normal_distribution<double> slip(0.0, models_.base.slip_stddev);
-  const double ds = 0.5 * (dl * (1.0 + slip(rng_)) + dr * (1.0 + slip(rng_)));
-  if (ds != 0.0) travel_sign_ = ds > 0.0 ? 1 : -1;
-  // Forward travel of the base is against ring order.
-  const double heading_before = PoseAt(position_in_).theta_rad;
-  position_in_ = Wrap(position_in_ - ds);
-  // At a corner the base turns in place to follow the hallway (A3); the encoders see the
-  // turn as opposite wheel travel, so odometry turns with the robot.
-  const double turn = std::remainder(PoseAt(position_in_).theta_rad - heading_before, 2 * kPi);
-  if (std::abs(turn) > 1e-9) {
-    left_travel_in_ -= turn * models_.base.wheel_base_in / 2.0;
-    right_travel_in_ += turn * models_.base.wheel_base_in / 2.0;
-  }
-  distance_in_ += std::abs(ds);
-}
-
-void WorldSim::Teleport(double ring_position_in) { position_in_ = PathFromRing(ring_position_in); }
-
 std::array<float, 24> WorldSim::Sonar() {
   std::array<float, 24> out{};
-  const world::Pose2d X_WR = PoseAt(position_in_);
   const std::vector<world::SonarReading> readings =
-      config_.sonar_surface_errors ? sonar_.Sense(*scene_, X_WR, sonar_errors_, rng_)
-                                   : sonar_.SenseExact(*scene_, X_WR);
+      config_.sonar_surface_errors ? sonar_.Sense(*scene_, X_WR_, sonar_errors_, rng_)
+                                   : sonar_.SenseExact(*scene_, X_WR_);
   for (size_t k = 0; k < readings.size() && k < out.size(); ++k) {
     out[k] = readings[k].valid ? static_cast<float>(readings[k].range_in) : 0.0f;
   }
@@ -170,23 +219,76 @@ std::array<float, 24> WorldSim::Sonar() {
 std::vector<std::uint8_t> WorldSim::RenderFrame() {
   world::Illumination light;
   light.noise_stddev = config_.image_noise_sigma;
-  const world::RenderedFrame frame = camera_->Render(*scene_, PoseAt(position_in_), light, rng_);
+  const world::RenderedFrame frame = camera_->Render(*scene_, X_WR_, light, rng_);
   const cv::Mat img = frame.image.isContinuous() ? frame.image : frame.image.clone();
   return std::vector<std::uint8_t>(img.data, img.data + img.total());
 }
 
 SimTruth WorldSim::Truth() const {
   SimTruth t;
-  t.X_WR = PoseAt(position_in_);
+  t.X_WR = X_WR_;
   t.ring = ring_;
-  // The edge the camera looks at: the foot of the optical axis on the segment's wall.
-  t.edge_index = SegmentAt(position_in_);
-  const Eigen::Vector2d node = node_in_[t.edge_index];
-  const Eigen::Vector2d u = Unit(node, node_in_[t.edge_index + 1]);
-  const double metric = edge_start_in_[t.edge_index + 1] - edge_start_in_[t.edge_index];
-  t.offset_in = std::clamp((t.X_WR.position() - node).dot(u), 0.0, metric);
   t.distance_in = distance_in_;
-  t.forward_in_ring = travel_sign_ < 0;
+  t.collisions = collisions_;
+  t.in_contact = in_contact_;
+  const Eigen::Vector2d p = X_WR_.position();
+  const int n = edge_count();
+
+  // The edge the camera looks at: the first crossing of the optical axis with the mapped
+  // wall polyline.
+  const double yaw = X_WR_.theta_rad + DegToRad(models_.camera.mount_yaw_deg);
+  const Eigen::Vector2d ray{std::cos(yaw), std::sin(yaw)};
+  double best_t = std::numeric_limits<double>::infinity();
+  int edge = -1;
+  for (int e = 0; e < n; ++e) {
+    const double hit = RaySegment(p, ray, node_in_[e], node_in_[e + 1]);
+    if (hit > 0.0 && hit < best_t) {
+      best_t = hit;
+      edge = e;
+    }
+  }
+  Eigen::Vector2d foot = p;
+  if (edge >= 0) {
+    t.optical_axis_on_wall = true;
+    foot = p + ray * best_t;
+  } else {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < n; ++e) {
+      double f = 0.0;
+      const double d = SegmentDistance(p, node_in_[e], node_in_[e + 1], &f);
+      if (d < nearest) {
+        nearest = d;
+        edge = e;
+        foot = node_in_[e] + f * (node_in_[e + 1] - node_in_[e]);
+      }
+    }
+  }
+  t.edge_index = edge;
+  const double metric = edge_start_in_[edge + 1] - edge_start_in_[edge];
+  const double length = (node_in_[edge + 1] - node_in_[edge]).norm();
+  t.offset_in = length > 0.0 ? std::clamp((foot - node_in_[edge]).norm() / length * metric, 0.0, metric)
+                             : 0.0;
+  t.forward_in_ring = last_motion_.dot(Unit(node_in_[edge], node_in_[edge + 1])) > 0.0;
+
+  // The nearest stretch of the hallway axis.
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < static_cast<int>(axis_.size()); ++j) {
+    const Eigen::Vector2d a = axis_[j].a_in, b = axis_[j].b_in;
+    double f = 0.0;
+    const double d = SegmentDistance(p, a, b, &f);
+    if (d < nearest) {
+      nearest = d;
+      const Eigen::Vector2d u = Unit(a, b);
+      t.lateral_offset_in = (p - a).dot(-Left(u));
+      t.heading_error_rad = WrapPi(X_WR_.theta_rad - std::atan2(-u.y(), -u.x()));
+      t.axis_position_in = axis_start_in_[j] + f * (b - a).norm();
+    }
+  }
+  // Corners are where the axis bends (an open ring's ends are not).
+  t.corner_distance_in = std::numeric_limits<double>::infinity();
+  for (int j = closed_ ? 0 : 1; j < static_cast<int>(axis_.size()); ++j) {
+    t.corner_distance_in = std::min(t.corner_distance_in, (p - axis_[j].a_in).norm());
+  }
   return t;
 }
 

@@ -1,0 +1,404 @@
+#include "locomotion/hallway_behaviour.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "common/units.h"
+
+namespace stickrep::locomotion {
+namespace {
+
+double WrapPi(double a) { return std::remainder(a, 2.0 * kPi); }
+
+// Below this the base counts as standing still (a turn may start).
+constexpr double kAtRestFtps = 0.05;
+// A wall across the hallway is also seen by the sensors this far either side of the travel
+// direction (outside the three front ones), to within the tolerance below, while something
+// narrower (a person, a cart) leaves them reading the side walls farther off: at half the
+// width of a 10 ft hallway a 30° sensor's cone meets the wall ahead within 20 in of the axis.
+constexpr double kFlankDeg = 30.0;
+constexpr double kFlankToleranceIn = 12.0;
+// Once stopped before an obstacle, the base stays put while it is this much farther off.
+constexpr double kObstacleHoldIn = 12.0;
+
+}  // namespace
+
+void HallwayTracker::Predict(double ds_in, double dtheta_rad) {
+  if (!initialised_ || !std::isfinite(ds_in) || !std::isfinite(dtheta_rad)) return;
+  const double k = ds_in * std::cos(psi_);
+  y_ += ds_in * std::sin(psi_ + dtheta_rad / 2.0);
+  psi_ = WrapPi(psi_ + dtheta_rad);
+  pyy_ += 2.0 * k * pyp_ + k * k * ppp_;
+  pyp_ += k * ppp_;
+  const double walk_y = noise_.offset_walk_in_per_sqrt_in;
+  const double walk_psi = noise_.heading_walk_rad_per_sqrt_in;
+  const double turn = noise_.turn_scale_error * dtheta_rad;
+  pyy_ += walk_y * walk_y * std::abs(ds_in);
+  ppp_ += walk_psi * walk_psi * std::abs(ds_in) + turn * turn;
+}
+
+void HallwayTracker::UpdateOffset(double offset_in) {
+  if (!std::isfinite(offset_in)) return;
+  const double r = noise_.offset_sigma_in * noise_.offset_sigma_in;
+  const double v = offset_in - y_;
+  const double s = pyy_ + r;
+  if (initialised_ && v * v > noise_.gate_sigmas * noise_.gate_sigmas * s &&
+      ++rejected_ < noise_.reinit_after) {
+    return;
+  }
+  if (!initialised_ || rejected_ >= noise_.reinit_after) {
+    const double p0 = DegToRad(noise_.initial_heading_sigma_deg);
+    initialised_ = true;
+    y_ = offset_in;
+    if (rejected_ >= noise_.reinit_after) psi_ = 0.0;
+    pyy_ = r;
+    pyp_ = 0.0;
+    ppp_ = p0 * p0;
+    rejected_ = 0;
+    return;
+  }
+  rejected_ = 0;
+  const double ky = pyy_ / s, kp = pyp_ / s;
+  y_ += ky * v;
+  psi_ = WrapPi(psi_ + kp * v);
+  const double a = pyy_, b = pyp_;
+  pyy_ = a - a * a / s;
+  pyp_ = b - a * b / s;
+  ppp_ = ppp_ - b * b / s;
+}
+
+void HallwayTracker::UpdateHeading(double heading_rad) {
+  if (!initialised_ || !std::isfinite(heading_rad)) return;
+  const double sigma = DegToRad(noise_.heading_sigma_deg);
+  const double s = ppp_ + sigma * sigma;
+  const double v = WrapPi(heading_rad - psi_);
+  if (v * v > noise_.gate_sigmas * noise_.gate_sigmas * s) return;
+  const double ky = pyp_ / s, kp = ppp_ / s;
+  y_ += ky * v;
+  psi_ = WrapPi(psi_ + kp * v);
+  const double b = pyp_, c = ppp_;
+  pyy_ = pyy_ - b * b / s;
+  pyp_ = b - b * c / s;
+  ppp_ = c - c * c / s;
+}
+
+void HallwayTracker::TurnedOnto(double rad) {
+  if (!initialised_) return;
+  psi_ = WrapPi(psi_ - rad);
+  // The offset in the new hallway is anyone's guess until its walls are fitted.
+  pyy_ = 1e4;
+  pyp_ = 0.0;
+  rejected_ = 0;
+}
+
+bool HallwayTracker::offset_known() const {
+  return initialised_ && std::sqrt(pyy_) <= noise_.known_offset_sigma_in;
+}
+
+bool HallwayTracker::heading_known() const {
+  return initialised_ && std::sqrt(ppp_) <= DegToRad(noise_.known_heading_sigma_deg);
+}
+
+bool HallwayBehaviour::WallSpansHallway(double wall_in) const {
+  const HallwayFollowerConfig& c = config_.follower;
+  if (static_cast<int>(scan_.size()) != c.sensor_count) return false;
+  const double travel_rad = travel_sign_ > 0 ? 0.0 : kPi;
+  const double heading = tracker_.heading_known() ? tracker_.heading_rad() : 0.0;
+  const double normal_rad = travel_rad - heading;  // the wall ahead faces back along the axis
+  int seen = 0;
+  for (int side : {+1, -1}) {
+    // The sensor nearest kFlankDeg off the travel direction on this side.
+    int best = -1;
+    double best_off = kPi;
+    for (int k = 0; k < c.sensor_count; ++k) {
+      const double off =
+          std::abs(WrapPi(SensorBearingRad(k, c) - (travel_rad + side * DegToRad(kFlankDeg))));
+      if (off < best_off) best_off = off, best = k;
+    }
+    // An echo outside the footprint is rough but shows where something is: a wall ahead
+    // meets the flank sensors at a steep incidence, so the gate often sets them aside.
+    if (!scan_[best].valid && !scan_[best].outside_footprint) continue;  // no say either way
+    const double predicted = PredictedWallRangeIn(SensorBearingRad(best, c), normal_rad, wall_in, c);
+    if (!std::isfinite(predicted)) continue;
+    const double r = scan_[best].range_in;
+    if (r > predicted + kFlankToleranceIn) return false;  // it sees past: the side wall
+    if (r >= predicted - kFlankToleranceIn) ++seen;
+  }
+  return seen > 0;
+}
+
+const char* ToString(BehaviourState state) {
+  switch (state) {
+    case BehaviourState::kNoScan:
+      return "no_scan";
+    case BehaviourState::kFollowing:
+      return "following";
+    case BehaviourState::kStopping:
+      return "stopping";
+    case BehaviourState::kTurning:
+      return "turning";
+    case BehaviourState::kObstacle:
+      return "obstacle";
+  }
+  return "?";
+}
+
+HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
+    : config_(config), follower_(config.follower) {
+  const auto& c = config_;
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("hallway behaviour: " + what);
+  };
+  require(c.turn_rate_radps > 0.0, "turn_rate_radps must be > 0");
+  require(c.turn_accel_radps2 > 0.0, "turn_accel_radps2 must be > 0");
+  require(c.turn_tolerance_deg > 0.0 && c.turn_tolerance_deg < 45.0,
+          "turn_tolerance_deg must be in (0, 45)");
+  require(c.scan_timeout_s > 0.0, "scan_timeout_s must be > 0");
+  require(c.wall_memory_s >= 0.0, "wall_memory_s must be >= 0");
+  require(c.stop_tolerance_in > 0.0, "stop_tolerance_in must be > 0");
+  require(c.default_hallway_width_in > 0.0, "default_hallway_width_in must be > 0");
+  require(c.envelope_offset_in > 0.0 && c.envelope_heading_deg > 0.0,
+          "the envelope must be > 0");
+}
+
+void HallwayBehaviour::Reset() {
+  state_ = have_scan_ ? BehaviourState::kFollowing : BehaviourState::kNoScan;
+  follower_.Reset();
+  commanded_sign_ = 0;
+  travel_sign_ = +1;
+  last_linear_ftps_ = 0.0;
+  last_angular_radps_ = 0.0;
+  wall_known_ = false;
+  pending_ = TurnKind::kNone;
+  pending_rotate_rad_ = 0.0;
+}
+
+void HallwayBehaviour::OnScan(const std::vector<SonarRange>& scan, double now_s) {
+  estimate_ = EstimateHallway(scan, config_.follower);
+  scan_ = scan;
+  have_scan_ = true;
+  scan_fresh_ = true;
+  scan_time_s_ = now_s;
+  if (state_ == BehaviourState::kTurning) return;  // the walls are sideways mid-turn
+  const double wall = travel_sign_ > 0 ? estimate_.wall_forward_in : estimate_.wall_backward_in;
+  // The width is taken on a plain stretch only: near the end of a hallway a side that opens
+  // leaves the fit with stray echoes from round the corner.
+  if (!wall_known_ && !std::isfinite(wall) && !estimate_.left_open && !estimate_.right_open &&
+      estimate_.offset_valid && estimate_.left.inliers >= 2 && estimate_.right.inliers >= 2 &&
+      estimate_.hallway_width_in > 2.0 * config_.follower.stop_distance_in) {
+    hallway_width_in_ = estimate_.hallway_width_in;
+  }
+  if (std::isfinite(wall)) {
+    wall_known_ = true;
+    wall_ahead_in_ = wall;
+    wall_odometer_in_ = previous_odometer_in_;
+    wall_time_s_ = now_s;
+  }
+}
+
+void HallwayBehaviour::Report(BehaviourOutput& out) const {
+  out.state = state_;
+  out.travel_sign = travel_sign_;
+  out.offset_valid = tracker_.offset_known();
+  out.lateral_offset_in = out.offset_valid ? tracker_.offset_in() : 0.0;
+  out.heading_valid = tracker_.heading_known();
+  out.heading_error_rad = out.heading_valid ? tracker_.heading_rad() : 0.0;
+  out.in_envelope = state_ == BehaviourState::kFollowing && out.offset_valid &&
+                    std::abs(out.lateral_offset_in) <= config_.envelope_offset_in &&
+                    out.heading_valid &&
+                    std::abs(out.heading_error_rad) <= DegToRad(config_.envelope_heading_deg);
+}
+
+BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odometry_heading_rad,
+                                       double odometer_in, double now_s, double dt_s) {
+  BehaviourOutput out;
+  const HallwayFollowerConfig& fc = config_.follower;
+  if (!std::isfinite(commanded_speed_ftps) || !std::isfinite(odometry_heading_rad) ||
+      !std::isfinite(odometer_in) || !std::isfinite(now_s) || !std::isfinite(dt_s) ||
+      dt_s < 0.0) {
+    follower_.Reset();
+    last_linear_ftps_ = last_angular_radps_ = 0.0;
+    out.reason = "non-finite speed, odometry or time: holding the base";
+    Report(out);
+    return out;
+  }
+  if (have_odometer_) {
+    tracker_.Predict(odometer_in - previous_odometer_in_,
+                     WrapPi(odometry_heading_rad - previous_heading_rad_));
+  }
+  have_odometer_ = true;
+  previous_odometer_in_ = odometer_in;
+  previous_heading_rad_ = odometry_heading_rad;
+  const int sign = commanded_speed_ftps > 0.0 ? +1 : (commanded_speed_ftps < 0.0 ? -1 : 0);
+  if (sign != 0 && sign != commanded_sign_) {
+    // The mission chose a direction: it holds until the mission changes it again or a
+    // hallway end reverses it.
+    commanded_sign_ = sign;
+    if (sign != travel_sign_) wall_known_ = false;
+    travel_sign_ = sign;
+  }
+
+  // Rotating in place needs odometry only.
+  if (state_ == BehaviourState::kTurning) {
+    const double remaining = WrapPi(turn_target_rad_ - odometry_heading_rad);
+    const double a = config_.turn_accel_radps2;
+    const bool settled = std::abs(remaining) <= DegToRad(config_.turn_tolerance_deg) &&
+                         std::abs(last_angular_radps_) <= a * dt_s + 1e-12;
+    if (!settled) {
+      // The rate that still brakes to rest at the target, within the ramp either way.
+      const double wanted = std::copysign(
+          std::min(config_.turn_rate_radps, std::sqrt(2.0 * a * std::abs(remaining))), remaining);
+      out.angular_radps =
+          std::clamp(wanted, last_angular_radps_ - a * dt_s, last_angular_radps_ + a * dt_s);
+      last_angular_radps_ = out.angular_radps;
+      last_linear_ftps_ = 0.0;
+      out.reason = fmt::format("turning {:+.0f} deg in place at a {}: {:.0f} deg to go",
+                               RadToDeg(turn_rad_), ToString(pending_), RadToDeg(std::abs(remaining)));
+      Report(out);
+      return out;
+    }
+    // Done: follow the new hallway with a fresh controller and no stale wall.
+    tracker_.TurnedOnto(turn_rad_);
+    state_ = BehaviourState::kFollowing;
+    pending_ = TurnKind::kNone;
+    follower_.Reset();
+    wall_known_ = false;
+    last_angular_radps_ = 0.0;
+  }
+
+  if (!have_scan_ || now_s - scan_time_s_ > config_.scan_timeout_s) {
+    state_ = BehaviourState::kNoScan;
+    follower_.Reset();
+    last_linear_ftps_ = last_angular_radps_ = 0.0;
+    out.reason = have_scan_ ? fmt::format("no sonar scan for {:.1f} s: holding the base",
+                                          now_s - scan_time_s_)
+                            : "waiting for the first sonar scan: holding the base";
+    Report(out);
+    return out;
+  }
+  if (state_ == BehaviourState::kNoScan) state_ = BehaviourState::kFollowing;
+
+  // The wall across the hallway ahead, dead-reckoned from the scan that saw it.
+  const double width_in = hallway_width_in_ > 0.0 ? hallway_width_in_ : config_.default_hallway_width_in;
+  const double stop_at_in = std::max(width_in / 2.0, fc.stop_distance_in);
+  if (wall_known_ && now_s - wall_time_s_ > config_.wall_memory_s) wall_known_ = false;
+  double wall_in = kNoObstacle;
+  if (wall_known_) wall_in = wall_ahead_in_ - travel_sign_ * (odometer_in - wall_odometer_in_);
+
+  // At the stopping point (or braking to it) decide what the wall ahead means.
+  const bool was_obstacle = state_ == BehaviourState::kObstacle;
+  if (was_obstacle) state_ = BehaviourState::kFollowing;
+  // Waiting before an obstacle holds until it has gone (no creeping up to it by the
+  // tolerance, scan by scan).
+  const double hold_in = was_obstacle ? kObstacleHoldIn : 0.0;
+  if (state_ == BehaviourState::kFollowing &&
+      wall_in - stop_at_in <= config_.stop_tolerance_in + hold_in) {
+    HallwayEstimate seen = estimate_;
+    (travel_sign_ > 0 ? seen.wall_forward_in : seen.wall_backward_in) = wall_in;
+    HallwayFollowerConfig at = fc;
+    at.turn_wall_ahead_in = std::max(fc.turn_wall_ahead_in, stop_at_in + 2.0 * config_.stop_tolerance_in);
+    const TurnRequest turn = DetectTurn(seen, travel_sign_, at);
+    if (turn.kind != TurnKind::kNone && !WallSpansHallway(wall_in)) {
+      // Something in the way, not the end of the hallway: wait here until it goes.
+      out.obstacle_stop_started = !was_obstacle;
+      state_ = BehaviourState::kObstacle;
+      follower_.Reset();
+      last_linear_ftps_ = last_angular_radps_ = 0.0;
+      out.reason = fmt::format("obstacle {:.0f} in {} narrower than the hallway: stopped until it "
+                               "clears",
+                               wall_in, travel_sign_ > 0 ? "ahead" : "behind");
+      Report(out);
+      return out;
+    }
+    if (turn.kind != TurnKind::kNone) {
+      pending_ = turn.kind;
+      // A junction: turn toward the camera side, where the mapped wall is.
+      pending_rotate_rad_ = turn.kind == TurnKind::kJunction ? travel_sign_ * kPi / 2.0 : turn.rotate_rad;
+      state_ = BehaviourState::kStopping;
+      out.turn_kind = turn.kind;
+    }
+  }
+
+  if (state_ == BehaviourState::kStopping) {
+    const double speed = std::max(0.0, std::abs(last_linear_ftps_) - fc.brake_decel_ftps2 * dt_s);
+    if (speed > kAtRestFtps) {
+      out.linear_ftps = travel_sign_ * speed;
+      last_linear_ftps_ = out.linear_ftps;
+      last_angular_radps_ = 0.0;
+      out.reason = fmt::format("{} ahead: braking before acting on it", ToString(pending_));
+      Report(out);
+      return out;
+    }
+    last_linear_ftps_ = 0.0;
+    follower_.Reset();
+    if (pending_ == TurnKind::kHallwayEnd) {
+      travel_sign_ = -travel_sign_;
+      wall_known_ = false;
+      state_ = BehaviourState::kFollowing;
+      pending_ = TurnKind::kNone;
+      out.reversed = true;
+      out.turn_kind = TurnKind::kHallwayEnd;
+      out.reason = fmt::format("hallway end {:.0f} in ahead: travel reversed, now {}", wall_in,
+                               travel_sign_ > 0 ? "forward" : "backward");
+      Report(out);
+      return out;
+    }
+    state_ = BehaviourState::kTurning;
+    turn_rad_ = pending_rotate_rad_;
+    turn_target_rad_ = WrapPi(odometry_heading_rad + pending_rotate_rad_);
+    last_angular_radps_ = 0.0;
+    out.turn_started = true;
+    out.turn_kind = pending_;
+    out.reason = fmt::format("{} {:.0f} in ahead: turning {:+.0f} deg in place", ToString(pending_),
+                             wall_in, RadToDeg(pending_rotate_rad_));
+    Report(out);
+    return out;
+  }
+
+  // Following: the mission's speed, capped so the base stops on the new hallway's axis.
+  double speed = std::abs(commanded_speed_ftps);
+  if (std::isfinite(wall_in)) {
+    const double margin_in = std::max(0.0, wall_in - stop_at_in);
+    speed = std::min(speed, InchesToFeet(std::sqrt(2.0 * FeetToInches(fc.brake_decel_ftps2) * margin_in)));
+  }
+  // The scan's fit feeds the tracker where both walls are plain: where a side has opened,
+  // or a wall ahead reaches into the side sensors' view, the fit picks up echoes from round
+  // the corner, and odometry carries the track instead.
+  if (scan_fresh_ && !std::isfinite(wall_in) && !estimate_.left_open && !estimate_.right_open) {
+    if (estimate_.offset_valid) tracker_.UpdateOffset(estimate_.lateral_offset_in);
+    if (estimate_.heading_valid) tracker_.UpdateHeading(estimate_.heading_error_rad);
+  }
+  scan_fresh_ = false;
+  HallwayEstimate steer_on = estimate_;
+  steer_on.offset_valid = tracker_.offset_known();
+  steer_on.lateral_offset_in = tracker_.offset_in();
+  steer_on.heading_valid = tracker_.heading_known();
+  steer_on.heading_error_rad = tracker_.heading_rad();
+  const SteerCommand cmd = follower_.Steer(steer_on, travel_sign_ * speed, dt_s);
+  out.linear_ftps = cmd.linear_ftps;
+  out.angular_radps = cmd.angular_radps;
+  last_linear_ftps_ = cmd.linear_ftps;
+  last_angular_radps_ = cmd.angular_radps;
+  if (cmd.stopped_for_obstacle) {
+    out.obstacle_stop_started = !was_obstacle;
+    state_ = BehaviourState::kObstacle;
+    const double free_in = travel_sign_ > 0 ? estimate_.free_forward_in : estimate_.free_backward_in;
+    out.reason = fmt::format("obstacle {:.0f} in {}: stopped until it clears", free_in,
+                             travel_sign_ > 0 ? "ahead" : "behind");
+  } else {
+    state_ = BehaviourState::kFollowing;
+    if (std::isfinite(wall_in)) {
+      out.reason = fmt::format("following; wall {:.0f} in ahead, slowing to stop {:.0f} in from it",
+                               wall_in, stop_at_in);
+    } else {
+      out.reason = "following the hallway";
+    }
+  }
+  Report(out);
+  return out;
+}
+
+}  // namespace stickrep::locomotion

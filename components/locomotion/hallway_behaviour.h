@@ -1,0 +1,197 @@
+#pragma once
+
+// Hallway following with turns: what the locomotion process does in MOTION_FOLLOW_HALLWAY.
+// Owns a HallwayFollower (wall fit and PD steering, hallway_follower.h) and the state
+// machine around it:
+//
+//   FOLLOWING  steer along the hallway axis on the newest gated sonar scan. A wall across
+//              the hallway ahead caps the speed so that the base comes to rest with its
+//              centre half the measured hallway width from that wall, i.e. on the axis of
+//              the hallway it turns into. There DetectTurn decides:
+//                corner       one side open: rotate in place toward it (TURNING);
+//                junction     both sides open: rotate toward the camera side (left, where
+//                             the mapped wall is), so the wall the camera watches is kept —
+//                             a left-hand rule; the mission plans routes, not this class;
+//                hallway end  neither side open: reverse the travel direction (the base
+//                             drives backward with the camera still on the wall, §6.3).
+//              A side that opens with no wall ahead (a branch hallway, a crossing) is
+//              passed straight: the hallway continues and the walls on both sides return.
+//   STOPPING   braking (at brake_decel_ftps2) before a turn decided at speed.
+//   TURNING    rotating in place by the decided angle, measured with the odometry heading,
+//              the rate ramped up and down (turn_accel_radps2) and capped (turn_rate_radps);
+//              then FOLLOWING again with the follower reset.
+//   OBSTACLE   stopped: something is within the follower's stop distance in the direction
+//              of travel, or what looked like a wall ahead does not reach across the
+//              hallway (the sensors 30° either side of travel read the side walls past
+//              it). Following resumes by itself when it clears.
+//   NO_SCAN    the newest scan is older than scan_timeout_s (or none came yet): the base is
+//              held, as steering blind is unsafe.
+//
+// Standard library only; the node feeds scans and odometry and sends the set-points.
+
+#include <string>
+#include <vector>
+
+#include "locomotion/hallway_follower.h"
+
+namespace stickrep::locomotion {
+
+// Noise figures of HallwayTracker.
+struct HallwayTrackerNoise {
+  double offset_sigma_in = 0.5;     // one scan's offset (the fit is good to ~0.2 in)
+  double heading_sigma_deg = 8.0;   // one scan's heading
+  double initial_heading_sigma_deg = 10.0;
+  // Odometry: heading random walk per inch travelled (wheel slip) and per radian turned,
+  // and a lateral wander per inch (a hallway is not a perfect line).
+  double heading_walk_rad_per_sqrt_in = 0.001;
+  double turn_scale_error = 0.02;
+  double offset_walk_in_per_sqrt_in = 0.05;
+  // A measurement this many standard deviations off the prediction is an outlier (a door
+  // recess taken for the wall); after `reinit_after` of them in a row the track restarts.
+  double gate_sigmas = 4.0;
+  int reinit_after = 5;
+  // Reported as known below these standard deviations.
+  double known_offset_sigma_in = 3.0;
+  double known_heading_sigma_deg = 4.0;
+};
+
+// Lateral offset and heading error of the base in the hallway, tracked between scans with
+// odometry: a two-state Kalman filter. One scan's wall fit gives the offset to a fraction of
+// an inch but the heading only to several degrees (sonar off real surfaces, §4.3); how the
+// offset changes as the base travels tells the heading far better, and odometry carries
+// both across scans and across stretches where the walls cannot be fitted (a side open, a
+// wall ahead). Conventions as in hallway_follower.h.
+class HallwayTracker {
+ public:
+  explicit HallwayTracker(HallwayTrackerNoise noise = {}) : noise_(noise) {}
+
+  // The base moved ds_in along its forward axis and turned dtheta_rad (odometry).
+  void Predict(double ds_in, double dtheta_rad);
+  void UpdateOffset(double offset_in);
+  void UpdateHeading(double heading_rad);
+  // After an in-place turn of `rad` (already predicted from odometry): the hallway's axis
+  // turned with the base, so the heading error drops by `rad`; the offset in the new
+  // hallway is not known yet.
+  void TurnedOnto(double rad);
+  void Reset() { initialised_ = false; rejected_ = 0; }
+
+  bool offset_known() const;
+  bool heading_known() const;
+  double offset_in() const { return y_; }
+  double heading_rad() const { return psi_; }
+
+ private:
+  HallwayTrackerNoise noise_;
+  bool initialised_ = false;
+  double y_ = 0.0, psi_ = 0.0;
+  double pyy_ = 0.0, pyp_ = 0.0, ppp_ = 0.0;  // covariance
+  int rejected_ = 0;
+};
+
+enum class BehaviourState { kNoScan, kFollowing, kStopping, kTurning, kObstacle };
+const char* ToString(BehaviourState state);
+
+struct HallwayBehaviourConfig {
+  HallwayFollowerConfig follower;
+  // In-place turns: peak rate and ramp. 0.6 rad/s turns 90° in about 3 s; the ramp keeps
+  // the wheels from slipping at the start and the end of a turn.
+  double turn_rate_radps = 0.6;
+  double turn_accel_radps2 = 1.0;
+  // A turn is complete within this of the target heading; the follower corrects the rest.
+  double turn_tolerance_deg = 1.0;
+  // The base is held when the newest scan is older than this (scans come every 0.1 s).
+  double scan_timeout_s = 0.5;
+  // A wall ahead seen by one scan is kept (dead-reckoned by odometry) for this long when
+  // the next scans miss it (the front sensors are gated out near a corner's edges).
+  double wall_memory_s = 1.0;
+  // The turn is taken once the base is within this of its stopping point.
+  double stop_tolerance_in = 2.0;
+  // The hallway width assumed until a scan has measured one.
+  double default_hallway_width_in = 120.0;
+  // The navigation envelope of §6.4.2: within 1 ft of the axis and 7.5° of its direction.
+  double envelope_offset_in = 12.0;
+  double envelope_heading_deg = 7.5;
+};
+
+// What the behaviour wants from the base this step, and why.
+struct BehaviourOutput {
+  double linear_ftps = 0.0;
+  double angular_radps = 0.0;
+  BehaviourState state = BehaviourState::kNoScan;
+  std::string reason;  // a sentence for the status message and the log
+  // Events of this step (for counting and logging).
+  bool turn_started = false;
+  bool reversed = false;
+  bool obstacle_stop_started = false;
+  TurnKind turn_kind = TurnKind::kNone;  // the decision taken this step
+  int travel_sign = +1;  // +1 forward, -1 backward
+  // The newest scan's view of the hallway.
+  bool offset_valid = false;
+  double lateral_offset_in = 0.0;  // + nearer the left (mapped) wall
+  bool heading_valid = false;
+  double heading_error_rad = 0.0;  // forward axis vs the hallway axis, CCW +
+  bool in_envelope = false;        // following, and inside the §6.4.2 envelope
+};
+
+class HallwayBehaviour {
+ public:
+  // Throws std::invalid_argument when a value is out of range (set-up only).
+  explicit HallwayBehaviour(HallwayBehaviourConfig config = {});
+
+  const HallwayBehaviourConfig& config() const { return config_; }
+
+  // A gated scan (sensor_count readings, ranges from the transducer faces), received at
+  // now_s on the clock Step is given.
+  void OnScan(const std::vector<SonarRange>& scan, double now_s);
+
+  // One control step: the mission's speed (signed: negative travels backward; the sign
+  // sets the travel direction until a hallway end reverses it), the odometry heading and
+  // odometer reading (drive.h), the time now and since the last step. Never throws.
+  BehaviourOutput Step(double commanded_speed_ftps, double odometry_heading_rad,
+                       double odometer_in, double now_s, double dt_s);
+
+  // Forgets speed, travel direction, turn and wall memory (after a stop or a plain velocity
+  // command): the next Step starts afresh. The newest scan is kept.
+  void Reset();
+
+  BehaviourState state() const { return state_; }
+  int travel_sign() const { return travel_sign_; }
+
+ private:
+  void Report(BehaviourOutput& out) const;
+  // Whether a wall ahead at wall_in spans the hallway (an end, a corner, a junction) rather
+  // than standing in it (an obstacle): judged on the newest scan.
+  bool WallSpansHallway(double wall_in) const;
+
+  HallwayBehaviourConfig config_;
+  HallwayFollower follower_;
+  HallwayTracker tracker_;
+  BehaviourState state_ = BehaviourState::kNoScan;
+
+  bool have_scan_ = false;
+  bool scan_fresh_ = false;  // not yet used by a Step: its heading is a measurement
+  double scan_time_s_ = 0.0;
+  HallwayEstimate estimate_;
+  std::vector<SonarRange> scan_;
+  double hallway_width_in_ = 0.0;  // last measured, 0 until one is
+
+  // Wall ahead in the travel direction, as last seen, and the odometer then.
+  bool wall_known_ = false;
+  double wall_ahead_in_ = 0.0;
+  double wall_odometer_in_ = 0.0;
+  double wall_time_s_ = 0.0;
+
+  int commanded_sign_ = 0;
+  int travel_sign_ = +1;
+  double last_linear_ftps_ = 0.0;
+  double last_angular_radps_ = 0.0;
+  double turn_target_rad_ = 0.0;
+  double turn_rad_ = 0.0;
+  TurnKind pending_ = TurnKind::kNone;
+  double pending_rotate_rad_ = 0.0;
+  double previous_odometer_in_ = 0.0;
+  double previous_heading_rad_ = 0.0;
+  bool have_odometer_ = false;
+};
+
+}  // namespace stickrep::locomotion

@@ -1,0 +1,226 @@
+#include "locomotion/hallway_behaviour.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "common/units.h"
+#include "locomotion/fake_sonar.h"
+
+namespace stickrep::locomotion {
+namespace {
+
+using fake::Scan;
+using fake::Segment;
+
+double WrapPi(double a) { return std::remainder(a, 2.0 * kPi); }
+
+// A unicycle base among wall segments, driven by the behaviour at 20 Hz with a scan every
+// 0.1 s; the odometry is exact. Frame: the hallway runs along +x with the camera's wall
+// at y = +60 (a 120 in hallway), the base starts on the axis facing +x.
+struct Drive {
+  explicit Drive(std::vector<Segment> w, HallwayBehaviourConfig c = {}) : walls(std::move(w)), b(c) {}
+
+  // Steps until `done` holds or `seconds` pass; returns whether `done` held.
+  template <typename Done>
+  bool Until(Done done, double seconds, double speed_ftps = 2.6) {
+    for (int i = 0; i < static_cast<int>(seconds / kDt); ++i) {
+      if (step % 2 == 0) b.OnScan(Scan(walls, x, y, psi), t);
+      out = b.Step(speed_ftps, psi, odometer, t, kDt);
+      max_speed = std::max(max_speed, std::abs(out.linear_ftps));
+      max_rate = std::max(max_rate, std::abs(out.angular_radps));
+      max_rate_change = std::max(max_rate_change, std::abs(out.angular_radps - last_rate));
+      last_rate = out.angular_radps;
+      turns += out.turn_started;
+      reversals += out.reversed;
+      obstacle_stops += out.obstacle_stop_started;
+      const double ds = FeetToInches(out.linear_ftps) * kDt;
+      x += ds * std::cos(psi + out.angular_radps * kDt / 2.0);
+      y += ds * std::sin(psi + out.angular_radps * kDt / 2.0);
+      psi = WrapPi(psi + out.angular_radps * kDt);
+      odometer += ds;
+      t += kDt;
+      ++step;
+      if (done()) return true;
+    }
+    return false;
+  }
+
+  static constexpr double kDt = 0.05;
+  std::vector<Segment> walls;
+  HallwayBehaviour b;
+  BehaviourOutput out;
+  double x = -400.0, y = 0.0, psi = 0.0, odometer = 0.0, t = 0.0;
+  int step = 0, turns = 0, reversals = 0, obstacle_stops = 0;
+  double max_speed = 0.0, max_rate = 0.0, max_rate_change = 0.0, last_rate = 0.0;
+};
+
+// The camera's wall ends at x = 0 and the hallway turns left (toward it) into a hallway
+// between x = 0 and x = 120 running along +y: a convex corner of the mapped wall.
+std::vector<Segment> LeftCorner() {
+  return {{{-2000, 60}, {0, 60}}, {{0, 60}, {0, 2000}},
+          {{-2000, -60}, {120, -60}}, {{120, -60}, {120, 2000}}};
+}
+
+// The hallway turns right: the camera's wall runs on round the corner (concave).
+std::vector<Segment> RightCorner() {
+  return {{{-2000, 60}, {60, 60}}, {{60, 60}, {60, -2000}},
+          {{-2000, -60}, {-60, -60}}, {{-60, -60}, {-60, -2000}}};
+}
+
+TEST(HallwayBehaviourTest, HoldsTheBaseUntilAScanArrivesAndWhenScansStop) {
+  HallwayBehaviour b;
+  BehaviourOutput out = b.Step(2.6, 0.0, 0.0, 0.0, 0.05);
+  EXPECT_EQ(out.state, BehaviourState::kNoScan);
+  EXPECT_EQ(out.linear_ftps, 0.0);
+  EXPECT_THAT(out.reason, ::testing::HasSubstr("first sonar scan"));
+  b.OnScan(Scan(fake::Hallway(60), 0, 0, 0), 0.0);
+  out = b.Step(2.6, 0.0, 0.0, 0.05, 0.05);
+  EXPECT_EQ(out.state, BehaviourState::kFollowing);
+  EXPECT_GT(out.linear_ftps, 0.0);
+  out = b.Step(2.6, 0.0, 0.0, 0.7, 0.05);  // 0.7 s since the scan
+  EXPECT_EQ(out.state, BehaviourState::kNoScan);
+  EXPECT_EQ(out.linear_ftps, 0.0);
+  EXPECT_THAT(out.reason, ::testing::HasSubstr("no sonar scan for 0.7 s"));
+}
+
+TEST(HallwayBehaviourTest, ReportsTheEnvelopeOnceTheTrackIsKnown) {
+  // One scan gives the offset to a fraction of an inch but the heading only roughly: the
+  // envelope is reported once travel has pinned the heading down.
+  Drive near(fake::Hallway(60));
+  near.y = 3.0;
+  near.psi = DegToRad(2.0);
+  near.Until([] { return true; }, 1.0);
+  EXPECT_TRUE(near.out.offset_valid);
+  EXPECT_NEAR(near.out.lateral_offset_in, 3.0, 1.0);
+  EXPECT_FALSE(near.out.in_envelope);
+  EXPECT_TRUE(near.Until([&] { return near.out.in_envelope; }, 3.0));
+  EXPECT_LE(std::abs(near.out.lateral_offset_in - near.y), 1.0);
+  EXPECT_LE(std::abs(RadToDeg(near.out.heading_error_rad - near.psi)), 1.0);
+
+  Drive far(fake::Hallway(60));
+  far.y = -20.0;
+  far.Until([] { return true; }, 1.0);
+  EXPECT_NEAR(far.out.lateral_offset_in, -20.0, 1.0);
+  EXPECT_FALSE(far.out.in_envelope);
+}
+
+TEST(HallwayBehaviourTest, TurnsLeftAtAConvexCornerOntoTheNewAxis) {
+  Drive r(LeftCorner());
+  // Done once it has gone 10 ft up the new hallway.
+  ASSERT_TRUE(r.Until([&] { return r.y > 120.0; }, 60.0)) << r.out.reason;
+  EXPECT_EQ(r.turns, 1);
+  EXPECT_NEAR(r.x, 60.0, 4.0);  // stopped on the new hallway's axis before turning
+  EXPECT_NEAR(r.psi, kPi / 2.0, DegToRad(3.0));
+  ASSERT_TRUE(r.Until([&] { return r.y > 600.0; }, 60.0));
+  EXPECT_NEAR(r.x, 60.0, 3.0);
+  EXPECT_LE(r.max_speed, 2.6);
+}
+
+TEST(HallwayBehaviourTest, TurnsRightAtAConcaveCornerKeepingTheWallOnTheLeft) {
+  Drive r(RightCorner());
+  ASSERT_TRUE(r.Until([&] { return r.y < -120.0; }, 60.0)) << r.out.reason;
+  EXPECT_EQ(r.turns, 1);
+  EXPECT_NEAR(r.x, 0.0, 4.0);
+  EXPECT_NEAR(r.psi, -kPi / 2.0, DegToRad(3.0));
+}
+
+TEST(HallwayBehaviourTest, TurnsInPlaceWithARampedLimitedRate) {
+  HallwayBehaviourConfig c;
+  Drive r(RightCorner(), c);
+  ASSERT_TRUE(r.Until([&] { return r.out.state == BehaviourState::kTurning; }, 60.0));
+  const double x0 = r.x, y0 = r.y, psi0 = r.psi;
+  double moved = 0.0, max_rate = 0.0, max_change = 0.0, previous = 0.0, last = 0.0;
+  ASSERT_TRUE(r.Until(
+      [&] {
+        if (r.out.state != BehaviourState::kTurning) return true;
+        moved = std::max(moved, std::hypot(r.x - x0, r.y - y0));
+        max_rate = std::max(max_rate, std::abs(r.out.angular_radps));
+        max_change = std::max(max_change, std::abs(r.out.angular_radps - previous));
+        previous = last = r.out.angular_radps;
+        return false;
+      },
+      20.0));
+  EXPECT_EQ(moved, 0.0);  // in place: no linear speed while turning
+  EXPECT_NEAR(max_rate, c.turn_rate_radps, 1e-9);
+  EXPECT_LE(max_change, c.turn_accel_radps2 * Drive::kDt + 1e-9);
+  // The rate is ramped down to the end: the last step within the tolerance's braking rate.
+  EXPECT_LE(std::abs(last), std::sqrt(2.0 * c.turn_accel_radps2 * DegToRad(2.0 * c.turn_tolerance_deg)));
+  EXPECT_NEAR(WrapPi(r.psi - psi0), -kPi / 2.0, DegToRad(c.turn_tolerance_deg + 0.5));
+}
+
+TEST(HallwayBehaviourTest, ReversesAtAHallwayEnd) {
+  Drive r({{{-2000, 60}, {0, 60}}, {{0, 60}, {0, -60}}, {{-2000, -60}, {0, -60}}});
+  ASSERT_TRUE(r.Until([&] { return r.reversals > 0; }, 60.0)) << r.out.reason;
+  EXPECT_NEAR(r.x, -60.0, 4.0);
+  EXPECT_EQ(r.out.travel_sign, -1);
+  EXPECT_THAT(r.out.reason, ::testing::HasSubstr("travel reversed"));
+  const double x_at_end = r.x;
+  ASSERT_TRUE(r.Until([&] { return r.x < x_at_end - 120.0; }, 30.0));
+  EXPECT_EQ(r.turns, 0);
+  EXPECT_NEAR(r.psi, 0.0, DegToRad(3.0));  // backward, still facing the same way
+}
+
+TEST(HallwayBehaviourTest, AtAJunctionTurnsTowardTheCameraSide) {
+  // A T: the hallway ends against a crossing hallway between x = -60 and x = 60.
+  Drive r({{{-2000, 60}, {-60, 60}}, {{-60, 60}, {-60, 2000}},
+         {{-2000, -60}, {-60, -60}}, {{-60, -60}, {-60, -2000}},
+         {{60, -2000}, {60, 2000}}});
+  ASSERT_TRUE(r.Until([&] { return r.turns > 0; }, 60.0)) << r.out.reason;
+  EXPECT_EQ(r.out.turn_kind, TurnKind::kJunction);
+  ASSERT_TRUE(r.Until([&] { return r.y > 120.0; }, 30.0));
+  EXPECT_NEAR(r.psi, kPi / 2.0, DegToRad(3.0));
+}
+
+TEST(HallwayBehaviourTest, WaitsBeforeSomeoneInTheHallwayAndResumesWhenTheyStepAside) {
+  std::vector<Segment> walls = fake::Hallway(60);
+  walls.push_back({{0, -8}, {0, 8}});  // someone standing on the axis
+  Drive r(walls);
+  ASSERT_TRUE(r.Until([&] { return r.out.state == BehaviourState::kObstacle; }, 60.0));
+  EXPECT_EQ(r.obstacle_stops, 1);
+  EXPECT_THAT(r.out.reason, ::testing::HasSubstr("obstacle"));
+  // Held there: not reversed (it is not the hallway's end), not turned, one stop reported.
+  ASSERT_FALSE(r.Until([&] { return r.out.state != BehaviourState::kObstacle; }, 3.0));
+  EXPECT_NEAR(r.x, -60.0, 4.0);
+  EXPECT_EQ(r.obstacle_stops, 1);
+  EXPECT_EQ(r.reversals + r.turns, 0);
+  r.walls.pop_back();  // they step aside
+  ASSERT_TRUE(r.Until([&] { return r.x > 120.0; }, 30.0));
+  EXPECT_EQ(r.out.state, BehaviourState::kFollowing);
+}
+
+TEST(HallwayBehaviourTest, StopsAtOnceForSomethingSuddenlyClose) {
+  Drive r(fake::Hallway(60));
+  ASSERT_TRUE(r.Until([&] { return r.x > -200.0; }, 30.0));
+  ASSERT_GT(r.out.linear_ftps, 2.5);
+  const double front = r.x + 30.0;
+  r.walls.push_back({{front, -8}, {front, 8}});  // someone steps out 30 in ahead
+  ASSERT_TRUE(r.Until([&] { return r.out.state == BehaviourState::kObstacle; }, 0.3)) << r.out.reason;
+  EXPECT_EQ(r.out.linear_ftps, 0.0);
+  EXPECT_GT(front - r.x, 7.5);  // stopped clear of them
+  EXPECT_EQ(r.obstacle_stops, 1);
+}
+
+TEST(HallwayBehaviourTest, MissionDirectionSetsTheTravelAndNonFiniteInputHolds) {
+  HallwayBehaviour b;
+  b.OnScan(Scan(fake::Hallway(60), 0, 0, 0), 0.0);
+  EXPECT_LT(b.Step(-1.0, 0.0, 0.0, 0.0, 0.05).linear_ftps, 0.0);
+  EXPECT_EQ(b.travel_sign(), -1);
+  const BehaviourOutput held = b.Step(std::nan(""), 0.0, 0.0, 0.05, 0.05);
+  EXPECT_EQ(held.linear_ftps, 0.0);
+  EXPECT_THAT(held.reason, ::testing::HasSubstr("non-finite"));
+}
+
+TEST(HallwayBehaviourTest, RejectsBadConfig) {
+  HallwayBehaviourConfig c;
+  c.turn_rate_radps = 0.0;
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+  c = {};
+  c.turn_tolerance_deg = 90.0;
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace stickrep::locomotion
