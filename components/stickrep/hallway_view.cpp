@@ -13,14 +13,6 @@ bool IsCorner(double angle_deg) { return std::abs(angle_deg - 180.0) > 1.0; }
 
 }  // namespace
 
-bool HallwayView::IsJoinNode(int r, int node) const {
-  const std::string& id = original_.ring(r).id;
-  for (const Join& j : original_.joins()) {
-    if ((j.ring == id && j.node == node) || (j.to_ring == id && j.to_node == node)) return true;
-  }
-  return false;
-}
-
 bool HallwayView::IsStep(int r, int e) const {
   const Ring& ring = original_.ring(r);
   const int n = ring.EdgeCount();
@@ -29,8 +21,7 @@ bool HallwayView::IsStep(int r, int e) const {
   if (!edge.IsWall() || edge.metric_in >= config_.max_step_in) return false;
   const Node& a = ring.nodes[e];
   const Node& b = ring.nodes[(e + 1) % ring.NodeCount()];
-  const int nb = (e + 1) % ring.NodeCount();
-  if (a.artificial || b.artificial || IsJoinNode(r, e) || IsJoinNode(r, nb)) return false;
+  if (a.artificial || b.artificial) return false;
   // Opposite turns: the wall steps across and carries on parallel to itself.
   return IsCorner(a.angle_deg) && IsCorner(b.angle_deg) &&
          std::abs(a.angle_deg + b.angle_deg - 360.0) < 1.0;
@@ -111,6 +102,12 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
       node_of[r][n] = static_cast<int>(out.nodes.size());
       out.nodes.push_back(ring.nodes[n]);
     }
+    // A node that is gone (a step's corner, a merged wall's joint) stands for the view node
+    // that begins the view edge it lies in: a join there (a hallway branching off beside a
+    // pilaster) is reached where the follower, passing the step straight, senses that wall.
+    for (int e = 0; e < n; ++e) {
+      if (node_of[r][e] < 0) node_of[r][e] = view_of[e];
+    }
     rings.push_back(std::move(out));
     members_.push_back(std::move(members));
     view_of_.push_back(std::move(view_of));
@@ -121,9 +118,6 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
     const int from = map.FindRing(j.ring), to = map.FindRing(j.to_ring);
     j.node = node_of[from][j.node];
     j.to_node = node_of[to][j.to_node];
-    if (j.node < 0 || j.to_node < 0) {
-      throw std::invalid_argument("a join of ring '" + j.ring + "' lies on a removed step");
-    }
     joins.push_back(j);
   }
   view_ = Map(map.info(), std::move(rings), std::move(joins));

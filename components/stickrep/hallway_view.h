@@ -53,8 +53,6 @@ class HallwayView {
  private:
   // Whether original edge `e` of ring `r` is a step.
   bool IsStep(int r, int e) const;
-  // Whether node `node` of ring `r` is where rings are joined (either side of a join).
-  bool IsJoinNode(int r, int node) const;
 
   HallwayViewConfig config_;
   Map original_;

@@ -99,9 +99,23 @@ TEST(HallwayViewTest, ZeroStepKeepsEveryEdgeAndJoinsSurvive) {
 TEST(HallwayViewTest, EngineeringBuildingPilastersCollapse) {
   const Map eb = LoadMap(std::string(STICKREP_SOURCE_DIR) + "/maps/engineering_building_3f.yaml");
   const HallwayView view(eb);
-  // 90 walls of 8, 13 and 27 in lie between opposite corners; 3 of them touch a join or
-  // the end of an open ring and stay. The 46 in and deeper ones are corners.
-  EXPECT_EQ(view.steps_removed(), 87);
+  // 90 walls of 8, 13 and 27 in lie between opposite corners, 3 of them beside a join; all
+  // go. The 46 in and deeper ones are corners.
+  EXPECT_EQ(view.steps_removed(), 90);
+  // The join beside the pilaster at wing1_corridor node 45 now names the view node that
+  // begins the merged wall (original edges 41-45).
+  const int ring = eb.FindRing("wing1_corridor");
+  const int merged = view.ViewEdge(ring, 44);
+  EXPECT_EQ(view.ViewEdge(ring, 41), merged);
+  EXPECT_EQ(view.ViewEdge(ring, 45), merged);
+  bool found = false;
+  for (const Join& j : view.view().joins()) {
+    if (j.to_ring == "wing1_corridor" && j.ring == "wing3_corridor") {
+      found = true;
+      EXPECT_EQ(j.to_node, merged);
+    }
+  }
+  EXPECT_TRUE(found);
   int members = 0;  // every original edge lies in exactly one view edge
   for (int r = 0; r < eb.RingCount(); ++r)
     for (int e = 0; e < view.view().ring(r).EdgeCount(); ++e)
