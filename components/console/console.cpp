@@ -62,6 +62,7 @@ const std::map<std::string, EchoFactory>& EchoFactories() {
       {"stickrep::msgs::WheelCommand", Echo<msgs::WheelCommandPubSubType>()},
       {"stickrep::msgs::EncoderReading", Echo<msgs::EncoderReadingPubSubType>()},
       {"stickrep::msgs::MotionCommand", Echo<msgs::MotionCommandPubSubType>()},
+      {"stickrep::msgs::MotionState", Echo<msgs::MotionStatePubSubType>()},
       {"stickrep::msgs::Odometry", Echo<msgs::OdometryPubSubType>()},
       {"stickrep::msgs::LandmarkObservation", Echo<msgs::LandmarkObservationPubSubType>()},
       {"stickrep::msgs::LocalizationPose", Echo<msgs::LocalizationPosePubSubType>()},

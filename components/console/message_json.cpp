@@ -73,6 +73,18 @@ const char* Name(msgs::MotionMode m) {
   }
   return "?";
 }
+const char* Name(msgs::LocomotionState s) {
+  switch (s) {
+    case msgs::LOCOMOTION_STOPPED: return "STOPPED";
+    case msgs::LOCOMOTION_VELOCITY: return "VELOCITY";
+    case msgs::LOCOMOTION_NO_SCAN: return "NO_SCAN";
+    case msgs::LOCOMOTION_FOLLOWING: return "FOLLOWING";
+    case msgs::LOCOMOTION_STOPPING: return "STOPPING";
+    case msgs::LOCOMOTION_TURNING: return "TURNING";
+    case msgs::LOCOMOTION_OBSTACLE: return "OBSTACLE";
+  }
+  return "?";
+}
 const char* Name(msgs::SonarReadingState s) {
   switch (s) {
     case msgs::SONAR_VALID: return "VALID";
@@ -125,6 +137,22 @@ json ToJson(const msgs::MotionCommand& m) {
           {"mode", Name(m.mode())},
           {"linear_speed_ftps", m.linear_speed_ftps()},
           {"angular_rate_radps", m.angular_rate_radps()}};
+}
+
+json ToJson(const msgs::MotionState& m) {
+  return {{"header", Header(m.header())},
+          {"mode", Name(m.mode())},
+          {"state", Name(m.state())},
+          {"travel_sign", m.travel_sign()},
+          {"offset_valid", m.offset_valid()},
+          {"lateral_offset_in", m.lateral_offset_in()},
+          {"heading_valid", m.heading_valid()},
+          {"heading_error_deg", m.heading_error_deg()},
+          {"in_envelope", m.in_envelope()},
+          {"commanded_speed_ftps", m.commanded_speed_ftps()},
+          {"linear_speed_ftps", m.linear_speed_ftps()},
+          {"angular_rate_radps", m.angular_rate_radps()},
+          {"message", m.message()}};
 }
 
 json ToJson(const msgs::Odometry& m) {

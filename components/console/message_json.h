@@ -19,6 +19,7 @@ nlohmann::json ToJson(const msgs::Image& m);
 nlohmann::json ToJson(const msgs::WheelCommand& m);
 nlohmann::json ToJson(const msgs::EncoderReading& m);
 nlohmann::json ToJson(const msgs::MotionCommand& m);
+nlohmann::json ToJson(const msgs::MotionState& m);
 nlohmann::json ToJson(const msgs::Odometry& m);
 nlohmann::json ToJson(const msgs::LandmarkObservation& m);
 nlohmann::json ToJson(const msgs::LocalizationPose& m);

@@ -17,6 +17,7 @@
 #include "common/units.h"
 #include "locomotion/drive.h"
 #include "locomotion/hallway_behaviour.h"
+#include "locomotion/locomotion_config.h"
 #include "sensing/robot_config.h"
 #include "sonar/sonar_gate.h"
 #include "stickrep/map_io.h"
@@ -52,17 +53,6 @@ std::string MapPath(const std::string& name) {
   return std::string(STICKREP_SOURCE_DIR) + "/maps/" + name;
 }
 
-HallwayBehaviourConfig BehaviourFor(const sensing::RobotConfig& robot) {
-  HallwayBehaviourConfig c;
-  c.follower.sensor_count = robot.sonar_ring.count;
-  c.follower.spacing_deg = robot.sonar_ring.spacing_deg;
-  c.follower.head_radius_in = robot.sonar_ring.head_radius_in;
-  c.follower.cone_deg = robot.sonar_ring.cone_deg;
-  c.follower.coaxial_sensor = robot.camera.coaxial_sensor;
-  c.follower.max_speed_ftps = robot.base.max_speed_ftps;
-  return c;
-}
-
 // Drives round the ring against ring order (the camera on the mapped wall) until the
 // robot's foot on the hallway axis has gone once round, or the time runs out.
 LapFigures DriveLap(const std::string& map_file, const std::string& ring_id,
@@ -79,13 +69,10 @@ LapFigures DriveLap(const std::string& map_file, const std::string& ring_id,
   wc.start_lateral_offset_in = start_lateral_in;
   wc.start_heading_error_deg = start_heading_deg;
   virtual_robot::WorldSim sim(map, robot, wc, start_offset_in, seed);
-  sonar::SonarGateConfig gate;
-  gate.min_range_in = robot.sonar_ring.min_range_in;
-  gate.max_range_in = robot.sonar_ring.max_range_in;
-  gate.spacing_deg = robot.sonar_ring.spacing_deg;
-  gate.head_radius_in = robot.sonar_ring.head_radius_in;
-  gate.footprint_deg = robot.sonar_ring.footprint_deg;
-  HallwayBehaviour behaviour(BehaviourFor(robot));
+  const sonar::SonarGateConfig gate = sonar::GateConfigFor(robot);
+  HallwayBehaviourConfig behaviour_config;
+  ApplyRobot(robot, behaviour_config);
+  HallwayBehaviour behaviour(behaviour_config);
   Odometer odometer(robot.base.wheel_base_in);
   DriveLimits limits;
   limits.max_speed_ftps = robot.base.max_speed_ftps;

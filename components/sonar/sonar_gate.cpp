@@ -6,6 +6,16 @@
 
 namespace stickrep::sonar {
 
+SonarGateConfig GateConfigFor(const sensing::RobotConfig& robot) {
+  SonarGateConfig gate;
+  gate.min_range_in = robot.sonar_ring.min_range_in;
+  gate.max_range_in = robot.sonar_ring.max_range_in;
+  gate.spacing_deg = robot.sonar_ring.spacing_deg;
+  gate.head_radius_in = robot.sonar_ring.head_radius_in;
+  gate.footprint_deg = robot.sonar_ring.footprint_deg;
+  return gate;
+}
+
 namespace {
 
 bool InRange(double r, const SonarGateConfig& c) {

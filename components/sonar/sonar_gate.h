@@ -3,6 +3,8 @@
 #include <array>
 #include <cstdint>
 
+#include "sensing/robot_config.h"
+
 namespace stickrep::sonar {
 
 inline constexpr int kRingSize = 24;
@@ -31,6 +33,9 @@ struct SonarGateConfig {
   double head_radius_in = 7.5;    // transducer faces sit on this radius
   double footprint_deg = 15.0;    // accurate ranging for incidence phi <= 15 deg (§4.3)
 };
+
+// The gate for the ring of a robot description (configs/robot.yaml).
+SonarGateConfig GateConfigFor(const sensing::RobotConfig& robot);
 
 // Gates one raw ring scan: malformed values (NaN, infinite, negative), no echo (0), ranges
 // outside the 1-35 ft measuring range, and readings whose incidence on the surface is

@@ -34,11 +34,7 @@ class SonarNode : public runtime::ProcessNode {
     }
     ctx.config.Finish();
     const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
-    gate_.min_range_in = robot.sonar_ring.min_range_in;
-    gate_.max_range_in = robot.sonar_ring.max_range_in;
-    gate_.spacing_deg = robot.sonar_ring.spacing_deg;
-    gate_.head_radius_in = robot.sonar_ring.head_radius_in;
-    gate_.footprint_deg = robot.sonar_ring.footprint_deg;
+    gate_ = GateConfigFor(robot);
     if (robot.sonar_ring.count != kRingSize) {
       throw InputError(ctx.system.robot_file, 0, "robot.sonar_ring.count",
                        fmt::format("the sonar stream carries {} sensors", kRingSize));
