@@ -7,6 +7,8 @@
 #include <optional>
 
 #include "basePubSubTypes.h"
+#include "executive/executive.h"
+#include "executive/executive_config.h"
 #include "executive/mission.h"
 #include "executive/route.h"
 #include "stickrep/map_io.h"
@@ -22,6 +24,7 @@ namespace {
 msgs::MissionState ToMsg(MissionState s) {
   switch (s) {
     case MissionState::kWaitingForComponents: return msgs::MISSION_WAITING_FOR_COMPONENTS;
+    case MissionState::kAligning: return msgs::MISSION_ALIGNING;
     case MissionState::kRecoveringPose: return msgs::MISSION_RECOVERING_POSE;
     case MissionState::kLocalized: return msgs::MISSION_LOCALIZED;
     case MissionState::kExecutingGoal: return msgs::MISSION_EXECUTING_GOAL;
@@ -35,22 +38,14 @@ class ExecutiveNode : public runtime::ProcessNode {
  public:
   void Configure(runtime::NodeContext& ctx) override {
     ctx_ = &ctx;
-    const StrictYaml& c = ctx.config;
-    MissionConfig mission;
-    for (const StrictYaml& name : c.Sequence("required_components")) {
-      mission.required_components.push_back(name.As<std::string>());
-    }
-    mission.travel_speed_ftps = c.Get<double>("travel_speed_ftps", 0.1, 2.6, "ft/s");
-    mission.travel_direction = c.Get<int>("travel_direction", -1, 1);
-    if (mission.travel_direction == 0) c.Fail("travel_direction", "must be +1 or -1");
-    const double command_rate_hz = c.Get<double>("command_rate_hz", 2.0, 100.0, "Hz");
-    heartbeat_timeout_s_ = c.Get<double>("heartbeat_timeout_s", 0.5, 60.0, "s");
-    exit_when_localized_ = c.Get<bool>("exit_when_localized");
-    c.Finish();
-    mission_ = std::make_unique<Mission>(mission);
-    travel_direction_ = mission.travel_direction;
+    const ExecutiveConfig config = LoadExecutiveConfig(ctx.config);
+    const MissionConfig& mission = config.mission;
+    const double command_rate_hz = config.command_rate_hz;
+    heartbeat_timeout_s_ = config.heartbeat_timeout_s;
+    exit_when_localized_ = config.exit_when_localized;
     map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
-    planner_ = std::make_unique<RoutePlanner>(*map_);
+    executive_ = std::make_unique<Executive>(*map_, mission);
+    mission_ = &executive_->mission();
     odometry_ = std::make_unique<runtime::Reader<msgs::OdometryPubSubType>>(
         ctx.participant, ctx.executor, "robot/odometry", [this](const msgs::Odometry& o) {
           ctx_->counters.CountIn();
@@ -58,8 +53,7 @@ class ExecutiveNode : public runtime::ProcessNode {
             ctx_->counters.Drop("robot/odometry", "non-finite distance");
             return;
           }
-          odometer_in_ = o.distance_in();
-          mission_->OnOdometer(odometer_in_);
+          executive_->OnOdometer(o.distance_in());
           Report();
         });
 
@@ -76,6 +70,12 @@ class ExecutiveNode : public runtime::ProcessNode {
     poses_ = std::make_unique<runtime::Reader<msgs::LocalizationPosePubSubType>>(
         ctx.participant, ctx.executor, "localization/pose",
         [this](const msgs::LocalizationPose& p) { OnPose(p); });
+    motion_ = std::make_unique<runtime::Reader<msgs::MotionStatePubSubType>>(
+        ctx.participant, ctx.executor, "robot/motion/state", [this](const msgs::MotionState& m) {
+          ctx_->counters.CountIn();
+          mission_->OnMotionState(m.in_envelope(), m.header().stamp_ns() * 1e-9);
+          Report();
+        });
     goals_ = std::make_unique<runtime::Reader<msgs::MissionGoalPubSubType>>(
         ctx.participant, ctx.executor, "mission/goal",
         [this](const msgs::MissionGoal& g) { OnGoal(g); });
@@ -116,40 +116,29 @@ class ExecutiveNode : public runtime::ProcessNode {
     ctx_->counters.CountIn();
     if (p.status() == msgs::LOCALIZATION_LOCALIZED) {
       const int ring = map_->FindRing(p.best().ring_id());
-      if (ring >= 0) {
-        pose_ = MapPose{ring, static_cast<int>(p.best().edge_index()),
-                        p.best().forward() ? +1 : -1, p.best().offset_in()};
+      if (ring < 0) {
+        ctx_->counters.Drop("localization/pose", "a ring that is not on the map");
+        return;
       }
-      mission_->OnLocalized(fmt::format("ring '{}' edge {} ({})", p.best().ring_id(),
-                                        p.best().edge_index(),
-                                        p.best().forward() ? "forward" : "backward"));
+      executive_->OnLocalized(MapPose{ring, static_cast<int>(p.best().edge_index()),
+                                      p.best().forward() ? +1 : -1, p.best().offset_in()},
+                              fmt::format("ring '{}' edge {} ({})", p.best().ring_id(),
+                                          p.best().edge_index(),
+                                          p.best().forward() ? "forward" : "backward"));
     } else if (p.status() == msgs::LOCALIZATION_LOST) {
-      pose_.reset();
-      mission_->OnLost();
+      executive_->OnLost();
     }
     Report();
   }
 
   void OnGoal(const msgs::MissionGoal& g) {
     ctx_->counters.CountIn();
-    const auto refuse = [&](const std::string& why) {
-      ctx_->log->warn("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), why);
-      PublishStatus(fmt::format("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), why),
+    if (const auto why = executive_->OnGoal(g.goal_id(), g.target())) {
+      ctx_->log->warn("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), *why);
+      PublishStatus(fmt::format("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), *why),
                     g.goal_id());
-    };
-    if (const auto why = mission_->CanTakeGoal()) return refuse(*why);
-    if (!pose_) return refuse("the pose is not known yet");
-    const RouteResult route = planner_->Plan(*pose_, g.target());
-    if (!route) return refuse(route.error);
-    if (!route.route->crossings.empty()) {
-      return refuse("the route crosses into another hallway, and turning at a join is not "
-                    "built yet");
+      return;
     }
-    // Keep going means the direction the base travelled while localizing.
-    const int sign = route.route->initial_travel_sign >= 0 ? travel_direction_ : -travel_direction_;
-    mission_->StartGoal(GoalPlan{g.goal_id(), planner_->Describe(*route.route), sign,
-                                 route.route->distance_in},
-                        odometer_in_);
     Report();
   }
 
@@ -165,7 +154,7 @@ class ExecutiveNode : public runtime::ProcessNode {
     }
     const MotionRequest m = mission_->Motion();
     msgs::MotionCommand cmd;
-    cmd.mode(m.move ? msgs::MOTION_VELOCITY : msgs::MOTION_STOP);
+    cmd.mode(m.move ? msgs::MOTION_FOLLOW_HALLWAY : msgs::MOTION_STOP);
     cmd.linear_speed_ftps(m.linear_speed_ftps);
     if (commands_->Publish(cmd, now)) ctx_->counters.CountOut();
   }
@@ -190,12 +179,9 @@ class ExecutiveNode : public runtime::ProcessNode {
   }
 
   runtime::NodeContext* ctx_ = nullptr;
-  std::unique_ptr<Mission> mission_;
   std::unique_ptr<map::Map> map_;
-  std::unique_ptr<RoutePlanner> planner_;
-  std::optional<MapPose> pose_;
-  double odometer_in_ = 0.0;
-  int travel_direction_ = 1;
+  std::unique_ptr<Executive> executive_;
+  Mission* mission_ = nullptr;  // executive_'s
   std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;
   double heartbeat_timeout_s_ = 3.0;
   bool exit_when_localized_ = false;
@@ -205,6 +191,7 @@ class ExecutiveNode : public runtime::ProcessNode {
   std::unique_ptr<runtime::Reader<msgs::ComponentStatusPubSubType>> heartbeats_;
   std::unique_ptr<runtime::Reader<msgs::LocalizationPosePubSubType>> poses_;
   std::unique_ptr<runtime::Reader<msgs::MissionGoalPubSubType>> goals_;
+  std::unique_ptr<runtime::Reader<msgs::MotionStatePubSubType>> motion_;
 };
 
 }  // namespace

@@ -7,6 +7,7 @@ namespace stickrep::executive {
 const char* ToString(MissionState s) {
   switch (s) {
     case MissionState::kWaitingForComponents: return "WAITING_FOR_COMPONENTS";
+    case MissionState::kAligning: return "ALIGNING";
     case MissionState::kRecoveringPose: return "RECOVERING_POSE";
     case MissionState::kLocalized: return "LOCALIZED";
     case MissionState::kExecutingGoal: return "EXECUTING_GOAL";
@@ -33,7 +34,30 @@ void Mission::OnComponentActive(const std::string& name) {
   const bool all = std::all_of(config_.required_components.begin(),
                                config_.required_components.end(),
                                [this](const std::string& c) { return active_.count(c) > 0; });
-  if (all) Enter(MissionState::kRecoveringPose, "every process is active: travelling to recover the pose");
+  if (all) {
+    align_start_s_ = -1.0;
+    in_envelope_since_s_ = -1.0;
+    Enter(MissionState::kAligning,
+          "every process is active: aligning with the hallway axis and centring");
+  }
+}
+
+void Mission::OnMotionState(bool in_envelope, double now_s) {
+  if (state_ != MissionState::kAligning) return;
+  if (align_start_s_ < 0.0) align_start_s_ = now_s;
+  if (!in_envelope) {
+    in_envelope_since_s_ = -1.0;
+  } else if (in_envelope_since_s_ < 0.0) {
+    in_envelope_since_s_ = now_s;
+  }
+  if (in_envelope_since_s_ >= 0.0 && now_s - in_envelope_since_s_ >= config_.aligned_hold_s) {
+    Enter(MissionState::kRecoveringPose,
+          "inside the navigation envelope: travelling to recover the pose");
+  } else if (now_s - align_start_s_ >= config_.align_timeout_s) {
+    Enter(MissionState::kRecoveringPose,
+          "not inside the navigation envelope after " + std::to_string(static_cast<int>(
+              config_.align_timeout_s)) + " s: travelling to recover the pose anyway");
+  }
 }
 
 void Mission::OnComponentGone(const std::string& name, const std::string& why) {
@@ -47,7 +71,7 @@ void Mission::OnComponentGone(const std::string& name, const std::string& why) {
 }
 
 void Mission::OnLocalized(const std::string& where) {
-  if (state_ == MissionState::kRecoveringPose) {
+  if (state_ == MissionState::kRecoveringPose || state_ == MissionState::kAligning) {
     Enter(MissionState::kLocalized, "pose recovered at " + where + ": holding, ready for a goal");
   }
 }
@@ -78,6 +102,12 @@ void Mission::StartGoal(const GoalPlan& plan, double odometer_in) {
   Enter(MissionState::kExecutingGoal, "goal '" + plan.goal_id + "': " + plan.description);
 }
 
+void Mission::UpdateGoal(double remaining_in, double odometer_in) {
+  if (state_ != MissionState::kExecutingGoal) return;
+  goal_odometer_in_ = odometer_in + goal_.travel_sign * remaining_in;
+  OnOdometer(odometer_in);
+}
+
 void Mission::OnOdometer(double odometer_in) {
   if (state_ == MissionState::kExecutingGoal &&
       goal_.travel_sign * (odometer_in - goal_odometer_in_) >= 0.0) {
@@ -86,11 +116,16 @@ void Mission::OnOdometer(double odometer_in) {
 }
 
 MotionRequest Mission::Motion() const {
-  if (state_ == MissionState::kExecutingGoal) {
-    return {true, goal_.travel_sign * config_.travel_speed_ftps};
+  switch (state_) {
+    case MissionState::kAligning:
+      return {true, config_.travel_direction * config_.align_speed_ftps};
+    case MissionState::kRecoveringPose:
+      return {true, config_.travel_direction * config_.travel_speed_ftps};
+    case MissionState::kExecutingGoal:
+      return {true, goal_.travel_sign * config_.travel_speed_ftps};
+    default:
+      return {};
   }
-  if (state_ != MissionState::kRecoveringPose) return {};
-  return {true, config_.travel_direction * config_.travel_speed_ftps};
 }
 
 std::vector<std::string> Mission::TakeTransitions() {

@@ -11,6 +11,7 @@ namespace stickrep::executive {
 
 enum class MissionState {
   kWaitingForComponents,
+  kAligning,        // following the hallway slowly until inside the envelope (A3, A4)
   kRecoveringPose,
   kLocalized,       // pose recovered; holding until a goal arrives
   kExecutingGoal,   // travelling along the ring to the goal
@@ -19,7 +20,8 @@ enum class MissionState {
 };
 const char* ToString(MissionState s);
 
-// What the mission wants the base to do now.
+// What the mission wants the base to do now: follow the hallway at a signed speed
+// (negative: backward), or stand still.
 struct MotionRequest {
   bool move = false;
   double linear_speed_ftps = 0.0;
@@ -37,16 +39,27 @@ struct MissionConfig {
   std::vector<std::string> required_components;
   double travel_speed_ftps = 2.6;  // the base's top speed (§6.3): recovery is travel-bound
   int travel_direction = +1;       // +1: toward the image's right; -1: the other way
+  // Aligning and centring (A3, A4 of §6.3) before recovery: follow the hallway at this
+  // speed until locomotion has reported the robot inside the navigation envelope (§6.4.2)
+  // for aligned_hold_s; after align_timeout_s recovery starts anyway, and says so.
+  double align_speed_ftps = 1.3;
+  double aligned_hold_s = 1.0;
+  double align_timeout_s = 30.0;
 };
 
 // The executive's state machine, free of DDS: waits until every required process is
-// active, travels to recover the pose until the localizer reports LOCALIZED, and stops
-// the robot for good when a required process dies. Every transition is recorded.
+// active, aligns with the hallway and centres (A3, A4), travels to recover the pose until
+// the localizer reports LOCALIZED, holds there until a goal arrives, travels to it, recovers
+// again when the pose is lost, and stops the robot for good when a required process dies.
+// Every transition is recorded. Times are seconds on any one clock the caller keeps.
 class Mission {
  public:
   explicit Mission(MissionConfig config);
 
   void OnComponentActive(const std::string& name);
+  // Locomotion's report: whether the robot is inside the navigation envelope at `now_s`
+  // (the base's clock); aligning is timed from the first report.
+  void OnMotionState(bool in_envelope, double now_s);
   // A required process stopped or its liveliness was lost.
   void OnComponentGone(const std::string& name, const std::string& why);
   void OnLocalized(const std::string& where);
@@ -55,6 +68,9 @@ class Mission {
   std::optional<std::string> CanTakeGoal() const;
   // Starts travelling to the goal; the odometer is the base's current reading.
   void StartGoal(const GoalPlan& plan, double odometer_in);
+  // The localized pose says the goal is `remaining_in` further along (0: here), at
+  // odometer reading `odometer_in`: the goal's odometer reading is set afresh from it.
+  void UpdateGoal(double remaining_in, double odometer_in);
   // Progress toward the goal.
   void OnOdometer(double odometer_in);
   const std::string& goal_id() const { return goal_.goal_id; }
@@ -73,6 +89,8 @@ class Mission {
   GoalPlan goal_;
   double goal_odometer_in_ = 0.0;  // odometer reading at which the goal is reached
   std::set<std::string> active_;
+  double align_start_s_ = -1.0;
+  double in_envelope_since_s_ = -1.0;
   std::string message_;
   std::vector<std::string> transitions_;
 };

@@ -18,9 +18,43 @@ TEST(MissionTest, WaitsUntilEveryRequiredProcessIsActiveBeforeMoving) {
   EXPECT_EQ(m.state(), MissionState::kWaitingForComponents);
   EXPECT_FALSE(m.Motion().move);
   m.OnComponentActive("localizer");
-  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_EQ(m.state(), MissionState::kAligning);
   EXPECT_TRUE(m.Motion().move);
+  EXPECT_DOUBLE_EQ(m.Motion().linear_speed_ftps, 1.3);
+}
+
+TEST(MissionTest, AlignsUntilInsideTheEnvelopeLongEnoughThenTravelsAtFullSpeed) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnMotionState(false, 100.0);
+  m.OnMotionState(true, 101.0);
+  m.OnMotionState(false, 101.5);  // out again: the hold starts over
+  m.OnMotionState(true, 102.0);
+  m.OnMotionState(true, 102.9);
+  EXPECT_EQ(m.state(), MissionState::kAligning);
+  m.OnMotionState(true, 103.0);
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
   EXPECT_DOUBLE_EQ(m.Motion().linear_speed_ftps, 2.0);
+}
+
+TEST(MissionTest, AligningThatTakesTooLongGivesWayToRecoveryAndSaysSo) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnMotionState(false, 10.0);
+  m.OnMotionState(false, 39.0);
+  EXPECT_EQ(m.state(), MissionState::kAligning);
+  m.OnMotionState(false, 40.0);
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_NE(m.last_message().find("anyway"), std::string::npos) << m.last_message();
+}
+
+TEST(MissionTest, MotionReportsOutsideAligningChangeNothing) {
+  Mission m(TwoComponents());
+  m.OnMotionState(true, 0.0);
+  m.OnMotionState(true, 50.0);
+  EXPECT_EQ(m.state(), MissionState::kWaitingForComponents);
 }
 
 TEST(MissionTest, LocalizedStopsTheRobotUntilAGoalArrives) {
@@ -56,6 +90,30 @@ TEST(MissionTest, GoalIsDrivenToByOdometryAndThenTheRobotStops) {
   EXPECT_FALSE(m.Motion().move);
 }
 
+TEST(MissionTest, TheLocalizedPoseReanchorsTheGoal) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  m.StartGoal(GoalPlan{"g1", "ahead 300 in", +1, 300.0}, 0.0);
+  // Odometry says 250 in to go; the maintained pose says 20 in: it wins.
+  m.UpdateGoal(20.0, 50.0);
+  m.OnOdometer(65.0);
+  EXPECT_EQ(m.state(), MissionState::kExecutingGoal);
+  m.OnOdometer(71.0);
+  EXPECT_EQ(m.state(), MissionState::kGoalReached);
+}
+
+TEST(MissionTest, APoseBeyondTheGoalEndsItAtOnce) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  m.StartGoal(GoalPlan{"g1", "ahead 300 in", +1, 300.0}, 0.0);
+  m.UpdateGoal(-5.0, 200.0);
+  EXPECT_EQ(m.state(), MissionState::kGoalReached);
+}
+
 TEST(MissionTest, RequiredProcessGoneStopsTheRobotForGood) {
   Mission m(TwoComponents());
   m.OnComponentActive("sonar");
@@ -84,8 +142,8 @@ TEST(MissionTest, TransitionsAreRecordedInOrder) {
   m.OnLocalized("x");
   const auto t = m.TakeTransitions();
   ASSERT_EQ(t.size(), 2u);
-  EXPECT_EQ(t[0].rfind("WAITING_FOR_COMPONENTS -> RECOVERING_POSE", 0), 0u);
-  EXPECT_EQ(t[1].rfind("RECOVERING_POSE -> LOCALIZED", 0), 0u);
+  EXPECT_EQ(t[0].rfind("WAITING_FOR_COMPONENTS -> ALIGNING", 0), 0u);
+  EXPECT_EQ(t[1].rfind("ALIGNING -> LOCALIZED", 0), 0u);
   EXPECT_TRUE(m.TakeTransitions().empty());
 }
 
