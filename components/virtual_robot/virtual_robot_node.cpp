@@ -15,6 +15,7 @@
 #include "stickrep/map_io.h"
 #include "stickrep/map_render.h"
 #include "systemPubSubTypes.h"
+#include "virtual_robot/virtual_robot_config.h"
 #include "virtual_robot/world_sim.h"
 
 namespace stickrep::virtual_robot {
@@ -31,58 +32,29 @@ class VirtualRobotNode : public runtime::ProcessNode {
  public:
   void Configure(runtime::NodeContext& ctx) override {
     ctx_ = &ctx;
-    const StrictYaml& c = ctx.config;
-    const std::string source = c.Get<std::string>("source");
-    if (source == "replay") {
-      c.Fail("source", "replaying a recording is not built yet; use 'simulated'");
-    } else if (source != "simulated") {
-      c.Fail("source", "'" + source + "' is not one of: simulated, replay");
-    }
-    const auto seed = c.Get<uint64_t>("seed");
-    double start_in = c.Get<double>("start_offset_in", -1.0, 1e7, "in");
-    WorldSimConfig world;
-    world.ring_id = c.Get<std::string>("ring_id");
-    world.hallway_width_in = c.Get<double>("hallway_width_in", 36.0, 600.0, "in");
-    world.open_door_fraction = c.Get<double>("open_door_fraction", 0.0, 1.0);
-    world.image_noise_sigma = c.Get<double>("image_noise_sigma", 0.0, 50.0, "grey levels");
-    world.sonar_surface_errors = c.Get<bool>("sonar_surface_errors");
-    world.wheel_slip_stddev = c.Get<double>("wheel_slip_stddev", 0.0, 0.2);
-    const double max_offset_in = c.Get<double>("start_lateral_offset_max_in", 0.0, 120.0, "in");
-    const double max_heading_deg = c.Get<double>("start_heading_error_max_deg", 0.0, 25.0, "deg");
-    if (max_offset_in > world.hallway_width_in / 2.0 - 12.0) {
-      c.Fail("start_lateral_offset_max_in",
-             fmt::format("must leave a foot between the base centre and the wall: at most {:g} in "
-                         "in a {:g} in hallway",
-                         world.hallway_width_in / 2.0 - 12.0, world.hallway_width_in));
-    }
-    rtf_ = c.Get<double>("real_time_factor", 0.1, 50.0);
-    const double sim_rate_hz = c.Get<double>("sim_rate_hz", 1.0, 1000.0, "Hz");
-    const double encoder_rate_hz = c.Get<double>("encoder_rate_hz", 1.0, 200.0, "Hz");
-    const double sonar_rate_hz = c.Get<double>("sonar_rate_hz", 0.5, 50.0, "Hz");
-    const double camera_rate_hz = c.Get<double>("camera_rate_hz", 0.5, 60.0, "Hz");
-    wheel_timeout_s_ = c.Get<double>("wheel_command_timeout_s", 0.05, 5.0, "s");
-    kidnap_after_s_ = c.Get<double>("kidnap_after_localized_s", -1.0, 3600.0, "s");
-    kidnap_jump_in_ = c.Get<double>("kidnap_jump_in", -1e6, 1e6, "in");
-    summary_png_ = c.Get<std::string>("summary_png");
-    c.Finish();
+    const VirtualRobotConfig config = LoadVirtualRobotConfig(ctx.config);
+    const std::uint64_t seed = config.seed;
+    WorldSimConfig world = config.world;
+    rtf_ = config.real_time_factor;
+    wheel_timeout_s_ = config.wheel_command_timeout_s;
+    kidnap_after_s_ = config.kidnap_after_localized_s;
+    kidnap_jump_in_ = config.kidnap_jump_in;
+    summary_png_ = config.summary_png;
 
     const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
     map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
     const map::Map& map = *map_;
     const int ring = world.ring_id.empty() ? 0 : map.FindRing(world.ring_id);
-    if (ring < 0) c.Fail("ring_id", "no ring '" + world.ring_id + "' in " + ctx.system.map_file);
-    if (start_in < 0.0) {
-      double length_in = 0.0;
-      for (const map::Edge& e : map.ring(ring).edges) length_in += e.metric_in;
-      std::mt19937_64 pick(seed);
-      start_in = std::uniform_real_distribution<double>(0.0, length_in)(pick);
+    if (ring < 0) {
+      ctx.config.Fail("ring_id", "no ring '" + world.ring_id + "' in " + ctx.system.map_file);
     }
     // Off the axis and turned from it, so aligning and centring (A3, A4) has work to do.
-    std::mt19937_64 pose_pick(seed ^ 0x5DEECE66Dull);
-    world.start_lateral_offset_in =
-        std::uniform_real_distribution<double>(-max_offset_in, max_offset_in)(pose_pick);
-    world.start_heading_error_deg =
-        std::uniform_real_distribution<double>(-max_heading_deg, max_heading_deg)(pose_pick);
+    const StartPlacement start = DrawStart(config, map.ring(ring));
+    const double start_in = start.ring_position_in;
+    world.start_lateral_offset_in = start.lateral_offset_in;
+    world.start_heading_error_deg = start.heading_error_deg;
+    const double max_offset_in = config.start_lateral_offset_max_in;
+    const double max_heading_deg = config.start_heading_error_max_deg;
     sim_ = std::make_unique<WorldSim>(map, robot, world, start_in, seed);
     const SimTruth t = sim_->Truth();
     start_check_ = fmt::format(
@@ -116,10 +88,10 @@ class VirtualRobotNode : public runtime::ProcessNode {
         ctx.participant, ctx.executor, "localization/pose",
         [this](const msgs::LocalizationPose& p) { OnPose(p); });
     // Rates are in simulated time: faster than real time, every timer runs rtf times as often.
-    ctx.executor.AddTimer(1.0 / (sim_rate_hz * rtf_), [this] { StepSim(); });
-    ctx.executor.AddTimer(1.0 / (encoder_rate_hz * rtf_), [this] { PublishEncoders(); });
-    ctx.executor.AddTimer(1.0 / (sonar_rate_hz * rtf_), [this] { PublishSonar(); });
-    ctx.executor.AddTimer(1.0 / (camera_rate_hz * rtf_), [this] { PublishFrame(); });
+    ctx.executor.AddTimer(1.0 / (config.sim_rate_hz * rtf_), [this] { StepSim(); });
+    ctx.executor.AddTimer(1.0 / (config.encoder_rate_hz * rtf_), [this] { PublishEncoders(); });
+    ctx.executor.AddTimer(1.0 / (config.sonar_rate_hz * rtf_), [this] { PublishSonar(); });
+    ctx.executor.AddTimer(1.0 / (config.camera_rate_hz * rtf_), [this] { PublishFrame(); });
   }
 
   void Activate() override {
@@ -179,12 +151,9 @@ class VirtualRobotNode : public runtime::ProcessNode {
     judged_ = true;
     const SimTruth t = sim_->Truth();
     const bool forward = t.forward_in_ring;
-    const int n = sim_->edge_count();
-    const int de = std::abs(static_cast<int>(p.best().edge_index()) - t.edge_index);
-    // The localizer names the edge the robot is in once the last door has left the view;
-    // allow the neighbouring edge for the moment of crossing a node.
-    const bool correct = p.best().ring_id() == sim_->ring_id() && p.best().forward() == forward &&
-                         (de <= 1 || de == n - 1);
+    const bool correct =
+        PoseMatchesTruth(p.best().ring_id(), static_cast<int>(p.best().edge_index()),
+                         p.best().forward(), t, sim_->ring_id(), sim_->edge_count());
     const double sim_s = (SimNowNs() - start_wall_ns_) * 1e-9;
     const double wall_s = (ctx_->now_ns() - start_wall_ns_) * 1e-9;
     const double travelled_in = t.distance_in - recovery_start_in_;

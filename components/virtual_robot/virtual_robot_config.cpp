@@ -1,0 +1,72 @@
+#include "virtual_robot/virtual_robot_config.h"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <random>
+
+namespace stickrep::virtual_robot {
+
+VirtualRobotConfig LoadVirtualRobotConfig(const StrictYaml& c) {
+  VirtualRobotConfig out;
+  const std::string source = c.Get<std::string>("source");
+  if (source == "replay") {
+    c.Fail("source", "replaying a recording is not built yet; use 'simulated'");
+  } else if (source != "simulated") {
+    c.Fail("source", "'" + source + "' is not one of: simulated, replay");
+  }
+  out.seed = c.Get<std::uint64_t>("seed");
+  out.start_offset_in = c.Get<double>("start_offset_in", -1.0, 1e7, "in");
+  WorldSimConfig& world = out.world;
+  world.ring_id = c.Get<std::string>("ring_id");
+  world.hallway_width_in = c.Get<double>("hallway_width_in", 36.0, 600.0, "in");
+  world.open_door_fraction = c.Get<double>("open_door_fraction", 0.0, 1.0);
+  world.image_noise_sigma = c.Get<double>("image_noise_sigma", 0.0, 50.0, "grey levels");
+  world.sonar_surface_errors = c.Get<bool>("sonar_surface_errors");
+  world.wheel_slip_stddev = c.Get<double>("wheel_slip_stddev", 0.0, 0.2);
+  out.start_lateral_offset_max_in = c.Get<double>("start_lateral_offset_max_in", 0.0, 120.0, "in");
+  out.start_heading_error_max_deg = c.Get<double>("start_heading_error_max_deg", 0.0, 25.0, "deg");
+  if (out.start_lateral_offset_max_in > world.hallway_width_in / 2.0 - 12.0) {
+    c.Fail("start_lateral_offset_max_in",
+           fmt::format("must leave a foot between the base centre and the wall: at most {:g} in "
+                       "in a {:g} in hallway",
+                       world.hallway_width_in / 2.0 - 12.0, world.hallway_width_in));
+  }
+  out.real_time_factor = c.Get<double>("real_time_factor", 0.1, 50.0);
+  out.sim_rate_hz = c.Get<double>("sim_rate_hz", 1.0, 1000.0, "Hz");
+  out.encoder_rate_hz = c.Get<double>("encoder_rate_hz", 1.0, 200.0, "Hz");
+  out.sonar_rate_hz = c.Get<double>("sonar_rate_hz", 0.5, 50.0, "Hz");
+  out.camera_rate_hz = c.Get<double>("camera_rate_hz", 0.5, 60.0, "Hz");
+  out.wheel_command_timeout_s = c.Get<double>("wheel_command_timeout_s", 0.05, 5.0, "s");
+  out.kidnap_after_localized_s = c.Get<double>("kidnap_after_localized_s", -1.0, 3600.0, "s");
+  out.kidnap_jump_in = c.Get<double>("kidnap_jump_in", -1e6, 1e6, "in");
+  out.summary_png = c.Get<std::string>("summary_png");
+  c.Finish();
+  return out;
+}
+
+StartPlacement DrawStart(const VirtualRobotConfig& config, const map::Ring& ring) {
+  StartPlacement s;
+  s.ring_position_in = config.start_offset_in;
+  if (s.ring_position_in < 0.0) {
+    double length_in = 0.0;
+    for (const map::Edge& e : ring.edges) length_in += e.metric_in;
+    std::mt19937_64 pick(config.seed);
+    s.ring_position_in = std::uniform_real_distribution<double>(0.0, length_in)(pick);
+  }
+  std::mt19937_64 pose_pick(config.seed ^ 0x5DEECE66Dull);
+  const double max_offset = config.start_lateral_offset_max_in;
+  const double max_heading = config.start_heading_error_max_deg;
+  s.lateral_offset_in = std::uniform_real_distribution<double>(-max_offset, max_offset)(pose_pick);
+  s.heading_error_deg = std::uniform_real_distribution<double>(-max_heading, max_heading)(pose_pick);
+  return s;
+}
+
+bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth,
+                      const std::string& truth_ring_id, int ring_edge_count) {
+  const int de = std::abs(edge - truth.edge_index);
+  return ring_id == truth_ring_id && forward == truth.forward_in_ring &&
+         (de <= 1 || de == ring_edge_count - 1);
+}
+
+}  // namespace stickrep::virtual_robot

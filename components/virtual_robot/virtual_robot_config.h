@@ -1,0 +1,50 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "common/strict_yaml.h"
+#include "stickrep/map.h"
+#include "virtual_robot/world_sim.h"
+
+namespace stickrep::virtual_robot {
+
+// The virtual robot's settings (configs/virtual_robot.yaml).
+struct VirtualRobotConfig {
+  std::uint64_t seed = 1;
+  double start_offset_in = -1.0;  // along the ring; -1: drawn from the seed
+  WorldSimConfig world;           // start_lateral_offset_in/heading filled by DrawStart
+  double start_lateral_offset_max_in = 0.0;
+  double start_heading_error_max_deg = 0.0;
+  double real_time_factor = 1.0;
+  double sim_rate_hz = 50.0;
+  double encoder_rate_hz = 20.0;
+  double sonar_rate_hz = 10.0;
+  double camera_rate_hz = 5.0;
+  double wheel_command_timeout_s = 0.5;
+  double kidnap_after_localized_s = -1.0;  // -1: never
+  double kidnap_jump_in = 0.0;
+  std::string summary_png;
+};
+
+// Reads the `virtual_robot` section; every key required, unknown keys rejected (InputError
+// with file, line and key). 'replay' is refused: recordings cannot be replayed yet.
+VirtualRobotConfig LoadVirtualRobotConfig(const StrictYaml& section);
+
+// Where a run starts: along the ring (drawn uniformly over its length when the config's
+// start_offset_in is -1) and off the axis and turned (drawn within the config's bounds),
+// all from the seed. The virtual robot process and the closed-loop run draw alike.
+struct StartPlacement {
+  double ring_position_in = 0.0;
+  double lateral_offset_in = 0.0;
+  double heading_error_deg = 0.0;
+};
+StartPlacement DrawStart(const VirtualRobotConfig& config, const map::Ring& ring);
+
+// Whether a localized pose (ring id, edge, travel direction) names where the robot truly
+// is: the same ring and direction, and the true edge or a neighbour (the pose may be
+// published while a node is crossed).
+bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth,
+                      const std::string& truth_ring_id, int ring_edge_count);
+
+}  // namespace stickrep::virtual_robot
