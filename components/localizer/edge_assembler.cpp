@@ -10,20 +10,24 @@ void EdgeAssembler::AddSighting(const DoorSighting& s) {
   // While the base turns in place the camera sweeps across the corner: no wall is square
   // to it and a sighting has no place along either wall.
   if (corner_ && !corner_->settled) return;
+  const double lo = s.along_in - s.width_in / 2.0, hi = s.along_in + s.width_in / 2.0;
+  const double weight = std::max(s.confidence, 1e-3);
   for (Track& t : open_) {
-    if (std::abs(t.along() - s.along_in) < config_.same_door_in) {
-      t.along_sum += s.along_in;
+    if (std::abs(t.lo() - lo) < config_.same_door_in && std::abs(t.hi() - hi) < config_.same_door_in) {
+      t.lo_sum += lo;
+      t.hi_sum += hi;
       t.frames++;
-      t.class_weight[static_cast<int>(s.door_class)] += std::max(s.confidence, 1e-3);
-      t.widths.push_back(s.width_in);
+      t.support += weight;
+      t.class_weight[static_cast<int>(s.door_class)] += weight;
       return;
     }
   }
   Track t;
-  t.along_sum = s.along_in;
+  t.lo_sum = lo;
+  t.hi_sum = hi;
   t.frames = 1;
-  t.class_weight[static_cast<int>(s.door_class)] = std::max(s.confidence, 1e-3);
-  t.widths.push_back(s.width_in);
+  t.support = weight;
+  t.class_weight[static_cast<int>(s.door_class)] = weight;
   open_.push_back(std::move(t));
 }
 
@@ -32,6 +36,7 @@ void EdgeAssembler::Restart() {
   corner_.reset();
   placed_.clear();
   sequence_.clear();
+  spans_.clear();
   last_jamb_in_.reset();
   last_door_end_in_.reset();
   pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
@@ -71,38 +76,7 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
          direction_ * (odometer_in_ - open_.front().along()) > config_.out_of_view_in) {
     Track t = open_.front();
     open_.erase(open_.begin());
-    if (t.frames < config_.min_frames) continue;
-    // A leaf of a double door: the next door starts right at this one's far jamb. That
-    // door is in view already (its centre is nearer than this one's by about a leaf), so
-    // it is an open track now; hand this leaf over to it.
-    const map::DoorClass leaf = t.VotedClass();
-    const double far_jamb = t.along() + direction_ * t.MedianWidth() / 2.0;
-    // A wall panel between two doors, framed by their casings, looks like a door to the
-    // detector (Figure 4.1 pairs any two strong vertical edges). A "door" whose jambs both
-    // touch doors — the last one emitted and one already in view — is that panel: leave it
-    // out, and the wall between the two real doors is measured jamb to jamb as usual.
-    const double near_jamb = t.along() - direction_ * t.MedianWidth() / 2.0;
-    const bool touches_previous =
-        last_door_end_in_ && std::abs(near_jamb - *last_door_end_in_) < config_.min_wall_in;
-    const bool touches_next =
-        std::any_of(open_.begin(), open_.end(), [&](const Track& n) {
-          const double n_near = n.along() - direction_ * n.MedianWidth() / 2.0;
-          return n.frames >= config_.min_frames &&
-                 std::abs(n_near - far_jamb) < config_.min_wall_in;
-        });
-    if (!t.first_leaf && touches_previous && touches_next) continue;
-    if (!t.first_leaf && (leaf == map::DoorClass::k30 || leaf == map::DoorClass::k36)) {
-      auto next = std::find_if(open_.begin(), open_.end(), [&](const Track& n) {
-        const double near = n.along() - direction_ * n.MedianWidth() / 2.0;
-        return n.VotedClass() == leaf && std::abs(near - far_jamb) < config_.min_wall_in;
-      });
-      if (next != open_.end()) {
-        next->first_leaf = leaf;
-        next->first_leaf_near_jamb_in = t.along() - direction_ * t.MedianWidth() / 2.0;
-        continue;
-      }
-    }
-    Emit(t, out);
+    if (Decide(t)) Emit(t, out);
   }
   if (!heading_ref_rad_) heading_ref_rad_ = heading_rad;
   const double turn = std::remainder(heading_rad - *heading_ref_rad_, 2.0 * M_PI);
@@ -138,9 +112,9 @@ void EdgeAssembler::BeginCorner(double turn_rad, std::vector<map::SensedEdge>& o
     return direction_ * a.along() < direction_ * b.along();
   });
   while (!open_.empty() && direction_ * (odometer_in_ - open_.front().along()) > 0.0) {
-    const Track t = open_.front();
+    Track t = open_.front();
     open_.erase(open_.begin());
-    if (t.frames >= config_.min_frames) Emit(t, out);
+    if (Decide(t)) Emit(t, out);
   }
   open_.clear();  // anything ahead was seen across the corner, on another wall
   // The wall up to the corner, then the node. The wall on the robot's side turns the same
@@ -174,27 +148,66 @@ void EdgeAssembler::PlaceCorner(double range_after_in, std::vector<map::SensedEd
   last_jamb_in_ = c.odometer_in - sign * direction_ * r1;
 }
 
+bool EdgeAssembler::Decide(Track& t) {
+  if (t.frames < config_.min_frames) return false;
+  const auto overlap = [](const Track& a, const Track& b) {
+    return std::min(a.hi(), b.hi()) - std::max(a.lo(), b.lo());
+  };
+  // Pairs that overlap this one are the same landmark: the best supported is the door.
+  for (const Track& o : open_) {
+    if (o.frames >= config_.min_frames && overlap(t, o) > config_.max_overlap_in &&
+        o.support > t.support) {
+      return false;
+    }
+  }
+  open_.erase(std::remove_if(open_.begin(), open_.end(),
+                             [&](const Track& o) { return overlap(t, o) > config_.max_overlap_in; }),
+              open_.end());
+  if (t.double_class) return true;  // the second leaf of a double door
+  const auto touches_far = [&](const Track& n) {
+    return n.frames >= config_.min_frames && std::abs(Near(n) - Far(t)) < config_.min_wall_in;
+  };
+  // A wall panel between two doors, framed by their casings, looks like a door to the
+  // detector. A "door" whose jambs both touch doors — the last one emitted and one already
+  // in view — is that panel: leave it out, and the wall between the two real doors is
+  // measured jamb to jamb as usual.
+  const bool touches_previous =
+      last_door_end_in_ && std::abs(Near(t) - *last_door_end_in_) < config_.min_wall_in;
+  if (touches_previous && std::any_of(open_.begin(), open_.end(), touches_far)) return false;
+  // The first leaf of a double door: the next leaf starts at this one's far jamb (the
+  // meeting stile) and is in view already; hand the double door over to it.
+  for (Track& n : open_) {
+    if (n.frames < config_.min_frames || std::abs(Near(n) - Far(t)) >= config_.leaf_gap_in ||
+        std::max(t.width(), n.width()) > config_.max_leaf_in ||
+        std::abs(t.width() - n.width()) > config_.leaf_mismatch_in) {
+      continue;
+    }
+    if (const auto cls = DoubleDoorClass(direction_ * (Far(n) - Near(t)))) {
+      n.double_class = cls;
+      n.double_near_jamb_in = Near(t);
+      return false;
+    }
+  }
+  return true;
+}
+
+std::optional<map::DoorClass> EdgeAssembler::DoubleDoorClass(double span_in) const {
+  const double d30 = std::abs(span_in - 60.0), d36 = std::abs(span_in - 72.0);
+  if (std::min(d30, d36) > config_.double_door_tolerance_in) return std::nullopt;
+  return d30 < d36 ? map::DoorClass::k30_30 : map::DoorClass::k36_36;
+}
+
 map::DoorClass EdgeAssembler::Track::VotedClass() const {
   return static_cast<map::DoorClass>(
       std::max_element(std::begin(class_weight), std::end(class_weight)) - std::begin(class_weight));
 }
 
-double EdgeAssembler::Track::MedianWidth() const {
-  std::vector<double> w = widths;
-  std::nth_element(w.begin(), w.begin() + w.size() / 2, w.end());
-  return w[w.size() / 2];
-}
-
 void EdgeAssembler::Emit(const Track& t, std::vector<map::SensedEdge>& out) {
-  const double width = t.MedianWidth();
-  const double far_jamb = t.along() + direction_ * width / 2.0;
-  if (t.first_leaf && *t.first_leaf == t.VotedClass()) {
-    const map::DoorClass double_class =
-        *t.first_leaf == map::DoorClass::k30 ? map::DoorClass::k30_30 : map::DoorClass::k36_36;
-    EmitEdges(t.first_leaf_near_jamb_in, far_jamb, double_class, out);
+  if (t.double_class) {
+    EmitEdges(t.double_near_jamb_in, Far(t), *t.double_class, out);
     return;
   }
-  EmitEdges(t.along() - direction_ * width / 2.0, far_jamb, t.VotedClass(), out);
+  EmitEdges(Near(t), Far(t), t.VotedClass(), out);
 }
 
 void EdgeAssembler::EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& out) {
@@ -211,6 +224,7 @@ void EdgeAssembler::EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& ou
   pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
   out.push_back(wall);
   sequence_.push_back(wall);
+  spans_.push_back({wall_from, end_in});
 }
 
 void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::DoorClass door_class,
@@ -223,6 +237,7 @@ void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::Door
   door.metric_in = direction_ * (far_jamb_in - near_jamb_in);
   out.push_back(door);
   sequence_.push_back(door);
+  spans_.push_back({near_jamb_in, far_jamb_in});
   last_jamb_in_ = far_jamb_in;
   last_door_end_in_ = far_jamb_in;
 }

@@ -21,8 +21,9 @@ struct DoorSighting {
 };
 
 struct EdgeAssemblerConfig {
-  // Sightings whose centres are closer than this are the same door.
-  double same_door_in = 14.0;
+  // Sightings whose two jambs each lie within this of a track's are the same pair of
+  // vertical edges seen again (jambs are placed to an inch or so frame to frame).
+  double same_door_in = 4.0;
   // A door is complete once the optical axis is this far past its centre: then it cannot
   // be seen again and its frames are all in (half the field of view's footprint at the
   // usual range, plus margin).
@@ -33,6 +34,20 @@ struct EdgeAssemblerConfig {
   // Two doors whose facing jambs are closer than this have no wall between them
   // (Table 6.2's door-door adjacencies).
   double min_wall_in = 6.0;
+  // Two tracks that overlap by more than this cannot both be doors: the one with more
+  // support (summed detector confidence) is the door, the other the same landmark paired
+  // wrongly (a casing edge, a leaf window's edge).
+  double max_overlap_in = 3.0;
+  // The two leaves of a double door share the meeting stile: their facing jambs lie within
+  // this of each other (doors side by side, or a door and a wall panel, are a casing's
+  // width apart), and together they span a 30/30 or 36/36 door to within
+  // double_door_tolerance_in.
+  double leaf_gap_in = 1.5;
+  double double_door_tolerance_in = 6.0;
+  // Leaves of one double door are alike and no wider than a 36 in leaf read a little wide
+  // (a wall panel between two casings reads 40 in).
+  double max_leaf_in = 38.5;
+  double leaf_mismatch_in = 5.0;
   // A heading change this large is a corner of the hallway: the node between two walls
   // (90 or 270 degrees, Table 6.1 and 6.3), sensed by odometry as the base turns (A3).
   double corner_turn_deg = 45.0;
@@ -49,10 +64,16 @@ struct EdgeAssemblerConfig {
 // edges (§6.3, Figure 6.2 steps 3-4): a door edge per tracked door (class by
 // confidence-weighted vote, width by median), and between consecutive doors a wall edge
 // whose length is the odometry distance between their facing jambs. The wall the robot
-// started in is only partly seen: its length is a lower bound. The detector sees the two
-// leaves of a double door as two doors with no wall between (the meeting stile is a jamb
-// to it); two such leaves of class 30 or 36 become one 30/30 or 36/36 edge, as the map has
-// them (Table 4.1's double-door classes).
+// started in is only partly seen: its length is a lower bound.
+//
+// The detector pairs any two strong vertical edges (Figure 4.1), so one door gives several
+// pairs: the opening, the opening plus a casing, a casing to a leaf window's edge. Each pair
+// is tracked by its two jambs; of tracks that overlap only the best supported is a door.
+// A wall panel between two doors, framed by their casings, is a pair too: a "door" whose
+// jambs touch doors on both sides is that panel and is left out. The two leaves of a double
+// door (the meeting stile is a jamb to the detector; a 72 in door never fits in the view
+// from the hallway axis) are two tracks that share the stile: they become one 30/30 or
+// 36/36 edge by their span, as the map has them (Table 4.1's double-door classes).
 class EdgeAssembler {
  public:
   explicit EdgeAssembler(EdgeAssemblerConfig config = {}) : config_(config) {}
@@ -72,21 +93,38 @@ class EdgeAssembler {
   std::optional<double> last_edge_end_in() const { return last_jamb_in_; }
   // Edges emitted since the last Restart(), in order.
   const std::vector<map::SensedEdge>& sequence() const { return sequence_; }
+  // Where each edge of sequence() began and ended: odometer readings, in travel order.
+  struct Span {
+    double from_in = 0.0;
+    double to_in = 0.0;
+  };
+  const std::vector<Span>& spans() const { return spans_; }
 
  private:
+  // One pair of vertical edges seen in one or more frames: its jambs in odometer
+  // coordinates (lo < hi), the detector's confidence summed over the frames, and the
+  // classifier's votes.
   struct Track {
-    double along_sum = 0.0;
+    double lo_sum = 0.0, hi_sum = 0.0;
     int frames = 0;
+    double support = 0.0;
     double class_weight[map::kDoorClassCount] = {};
-    std::vector<double> widths;
-    // Set when this track is the second leaf of a double door: the first leaf's class and
-    // its near jamb, where the double door begins.
-    std::optional<map::DoorClass> first_leaf;
-    double first_leaf_near_jamb_in = 0.0;
-    double along() const { return along_sum / frames; }
+    // Set when this track is the second leaf of a double door: the double door's class
+    // and the first leaf's near jamb, where the double door begins.
+    std::optional<map::DoorClass> double_class;
+    double double_near_jamb_in = 0.0;
+    double lo() const { return lo_sum / frames; }
+    double hi() const { return hi_sum / frames; }
+    double along() const { return 0.5 * (lo() + hi()); }
+    double width() const { return hi() - lo(); }
     map::DoorClass VotedClass() const;
-    double MedianWidth() const;
   };
+  double Near(const Track& t) const { return direction_ >= 0 ? t.lo() : t.hi(); }
+  double Far(const Track& t) const { return direction_ >= 0 ? t.hi() : t.lo(); }
+  // Decides what the front track (complete) is: false when it is left out.
+  bool Decide(Track& t);
+  // The double door whose two leaves span `span_in` jamb to jamb, if any.
+  std::optional<map::DoorClass> DoubleDoorClass(double span_in) const;
   void Emit(const Track& t, std::vector<map::SensedEdge>& out);
   void EmitEdges(double near_jamb_in, double far_jamb_in, map::DoorClass door_class,
                  std::vector<map::SensedEdge>& out);
@@ -94,6 +132,7 @@ class EdgeAssembler {
   EdgeAssemblerConfig config_;
   std::vector<Track> open_;
   std::vector<map::SensedEdge> sequence_;
+  std::vector<Span> spans_;
   double odometer_in_ = 0.0;
   bool have_odometer_ = false;
   double start_in_ = 0.0;             // odometer where the current sequence began

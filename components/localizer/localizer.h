@@ -83,6 +83,9 @@ class Localizer {
   std::uint64_t restarts() const { return restarts_; }
   std::uint64_t losses() const { return losses_; }
   std::uint64_t edges_total() const { return edges_total_; }
+  // The edges sensed since the current recovery (or the last restart) began, in order.
+  const std::vector<map::SensedEdge>& sensed_sequence() const { return assembler_.sequence(); }
+  const std::vector<EdgeAssembler::Span>& sensed_spans() const { return assembler_.spans(); }
 
  private:
   void Rebuild(double odometer_in, const std::string& message);

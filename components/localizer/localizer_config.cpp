@@ -29,6 +29,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
   s.view.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
+  s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
   c.Finish();
   return s;
 }
@@ -41,6 +42,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     const recovery::StudyConfig study = recovery::LoadStudyConfig(settings.study_file);
     const map::MatchIndex index(matched);
     config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise, study.bayes};
+    config.bayes.settings.threshold = settings.bayes_threshold;
   }
   return config;
 }

@@ -18,6 +18,8 @@ struct LocalizerSettings {
   std::string error_model_file;  // resolved against the settings file
   std::string study_file;
   double publish_rate_hz = 2.0;
+  // The posterior the Bayes matcher needs to declare a pose (replaces the study's).
+  double bayes_threshold = 0.995;
 };
 
 // Reads the `localizer` section; every key required, unknown keys rejected (InputError with

@@ -112,19 +112,63 @@ TEST(EdgeAssemblerTest, FirstOdometerReadingAwayFromZeroStillGivesTheRightDirect
   EXPECT_EQ(a.travel_direction(), +1);
 }
 
-TEST(EdgeAssemblerTest, TwoAdjacentLeavesOfTheSameClassBecomeOneDoubleDoor) {
-  EdgeAssembler a;
+// Feeds sightings (centre, width, class, confidence) to an assembler while the robot drives
+// forward from 0 to `to_in` in 6 in steps; each is seen while within 12 in of the axis.
+struct Sighted {
+  double centre, width;
+  map::DoorClass cls;
+  double confidence = 0.8;
+};
+std::vector<map::SensedEdge> Drive(EdgeAssembler& a, const std::vector<Sighted>& seen,
+                                   double to_in = 300.0) {
   std::vector<map::SensedEdge> edges;
-  // A 36/36 double door spanning 100..172 seen as two 35 in leaves around a 2 in stile.
-  for (double odo = 0.0; odo <= 300.0; odo += 6.0) {
-    for (double centre : {117.5, 154.5}) {
-      if (std::abs(centre - odo) < 12.0) a.AddSighting({map::DoorClass::k36, 35.0, 0.8, centre});
+  for (double odo = 0.0; odo <= to_in; odo += 6.0) {
+    for (const Sighted& s : seen) {
+      if (std::abs(s.centre - odo) < 12.0) a.AddSighting({s.cls, s.width, s.confidence, s.centre});
     }
     for (const auto& e : a.Advance(odo)) edges.push_back(e);
   }
+  return edges;
+}
+
+TEST(EdgeAssemblerTest, TwoLeavesSharingTheStileBecomeOneDoubleDoorBySpan) {
+  EdgeAssembler a;
+  // A 36/36 double door spanning 100..172, its leaves 1 in apart at the stile; one leaf
+  // reads 38 in and class 40, as a lone leaf often does.
+  const auto edges = Drive(a, {{117.5, 35.0, map::DoorClass::k36},
+                               {153.0, 34.0, map::DoorClass::k40}});
   ASSERT_EQ(edges.size(), 2u);
   EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36_36));
-  EXPECT_THAT(edges[1].metric_in, DoubleNear(72.0, 1e-9));
+  EXPECT_THAT(edges[1].metric_in, DoubleNear(70.0, 1e-9));
+}
+
+TEST(EdgeAssemblerTest, LeavesSpanningSixtyInchesAreA30By30) {
+  EdgeAssembler a;
+  const auto edges = Drive(a, {{115.0, 30.0, map::DoorClass::k30},
+                               {145.5, 30.0, map::DoorClass::k30}});
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k30_30));
+}
+
+TEST(EdgeAssemblerTest, DoorsACasingApartAreNotADoubleDoor) {
+  EdgeAssembler a;
+  // 36 in doors at 100..136 and 139..175: 3 in of casing between, not a shared stile.
+  const auto edges = Drive(a, {{118.0, 36.0, map::DoorClass::k36},
+                               {157.0, 36.0, map::DoorClass::k36}});
+  ASSERT_EQ(edges.size(), 3u);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36));
+  EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k36));
+}
+
+TEST(EdgeAssemblerTest, OfOverlappingPairsTheBestSupportedIsTheDoor) {
+  EdgeAssembler a;
+  // The opening 100..136 (class 36), and the same door paired from a casing edge to a leaf
+  // window's edge, 97..127 (class 30), seen as often but with less confidence.
+  const auto edges = Drive(a, {{118.0, 36.0, map::DoorClass::k36, 0.25},
+                               {112.0, 30.0, map::DoorClass::k30, 0.08}});
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36));
+  EXPECT_THAT(edges[0].metric_in, DoubleNear(100.0, 1e-9));
 }
 
 TEST(EdgeAssemblerTest, TurnOfTheHeadingEndsTheWallAtACornerWithItsAngle) {

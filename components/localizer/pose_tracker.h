@@ -35,7 +35,7 @@ struct TrackedPose {
 struct PoseTrackerConfig {
   // Radius of the uncertainty circle (§3.3, Brooks' uncertainty cylinder of §3.1): a base
   // for the jamb placement of the landmark pipeline (doors are placed to a few inches;
-  // EdgeAssemblerConfig::same_door_in is 14 in) plus a share of the distance travelled
+  // a door's jambs to an inch or two frame to frame) plus a share of the distance travelled
   // since the last confirmation for wheel slip (a few per cent on a LabMate, §3.1).
   double uncertainty_base_in = 12.0;
   double uncertainty_per_travel = 0.05;

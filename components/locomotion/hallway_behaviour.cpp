@@ -40,14 +40,14 @@ void HallwayTracker::Predict(double ds_in, double dtheta_rad) {
   ppp_ += walk_psi * walk_psi * std::abs(ds_in) + turn * turn;
 }
 
-void HallwayTracker::UpdateOffset(double offset_in) {
-  if (!std::isfinite(offset_in)) return;
+bool HallwayTracker::UpdateOffset(double offset_in) {
+  if (!std::isfinite(offset_in)) return false;
   const double r = noise_.offset_sigma_in * noise_.offset_sigma_in;
   const double v = offset_in - y_;
   const double s = pyy_ + r;
   if (initialised_ && v * v > noise_.gate_sigmas * noise_.gate_sigmas * s &&
       ++rejected_ < noise_.reinit_after) {
-    return;
+    return false;
   }
   if (!initialised_ || rejected_ >= noise_.reinit_after) {
     const double p0 = DegToRad(noise_.initial_heading_sigma_deg);
@@ -58,7 +58,7 @@ void HallwayTracker::UpdateOffset(double offset_in) {
     pyp_ = 0.0;
     ppp_ = p0 * p0;
     rejected_ = 0;
-    return;
+    return true;
   }
   rejected_ = 0;
   const double ky = pyy_ / s, kp = pyp_ / s;
@@ -68,6 +68,7 @@ void HallwayTracker::UpdateOffset(double offset_in) {
   pyy_ = a - a * a / s;
   pyp_ = b - a * b / s;
   ppp_ = ppp_ - b * b / s;
+  return true;
 }
 
 void HallwayTracker::UpdateHeading(double heading_rad) {
@@ -158,6 +159,7 @@ HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
           "turn_tolerance_deg must be in (0, 45)");
   require(c.scan_timeout_s > 0.0, "scan_timeout_s must be > 0");
   require(c.wall_memory_s >= 0.0, "wall_memory_s must be >= 0");
+  require(c.obstacle_patience_s > 0.0, "obstacle_patience_s must be > 0");
   require(c.stop_tolerance_in > 0.0, "stop_tolerance_in must be > 0");
   require(c.default_hallway_width_in > 0.0, "default_hallway_width_in must be > 0");
   require(c.envelope_offset_in > 0.0 && c.envelope_heading_deg > 0.0,
@@ -301,7 +303,12 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
     HallwayFollowerConfig at = fc;
     at.turn_wall_ahead_in = std::max(fc.turn_wall_ahead_in, stop_at_in + 2.0 * config_.stop_tolerance_in);
     const TurnRequest turn = DetectTurn(seen, travel_sign_, at);
-    if (turn.kind != TurnKind::kNone && !WallSpansHallway(wall_in)) {
+    // Something that has stood in the way, unmoved, for obstacle_patience_s is taken for
+    // what the sides say it is (the flank check leans on the heading estimate, which can be
+    // off right after aligning): a corner to turn, or the end of the way to reverse from.
+    if (!was_obstacle) obstacle_since_s_ = now_s;
+    const bool patience_over = was_obstacle && now_s - obstacle_since_s_ >= config_.obstacle_patience_s;
+    if (turn.kind != TurnKind::kNone && !patience_over && !WallSpansHallway(wall_in)) {
       // Something in the way, not the end of the hallway: wait here until it goes.
       out.obstacle_stop_started = !was_obstacle;
       state_ = BehaviourState::kObstacle;
@@ -348,7 +355,10 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
     }
     state_ = BehaviourState::kTurning;
     turn_rad_ = pending_rotate_rad_;
-    turn_target_rad_ = WrapPi(odometry_heading_rad + pending_rotate_rad_);
+    // Turn onto the new hallway's direction, not by a fixed angle from wherever the base
+    // points: a heading error left from aligning is taken out in the same turn.
+    const double heading_error = tracker_.heading_known() ? tracker_.heading_rad() : 0.0;
+    turn_target_rad_ = WrapPi(odometry_heading_rad - heading_error + pending_rotate_rad_);
     last_angular_radps_ = 0.0;
     out.turn_started = true;
     out.turn_kind = pending_;
@@ -364,12 +374,26 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
     const double margin_in = std::max(0.0, wall_in - stop_at_in);
     speed = std::min(speed, InchesToFeet(std::sqrt(2.0 * FeetToInches(fc.brake_decel_ftps2) * margin_in)));
   }
-  // The scan's fit feeds the tracker where both walls are plain: where a side has opened,
-  // or a wall ahead reaches into the side sensors' view, the fit picks up echoes from round
-  // the corner, and odometry carries the track instead.
-  if (scan_fresh_ && !std::isfinite(wall_in) && !estimate_.left_open && !estimate_.right_open) {
-    if (estimate_.offset_valid) tracker_.UpdateOffset(estimate_.lateral_offset_in);
-    if (estimate_.heading_valid) tracker_.UpdateHeading(estimate_.heading_error_rad);
+  // The scan's fit feeds the tracker where both walls are plain. Where one side has opened
+  // (a crossing, the hallway just turned out of) the other wall alone places the base,
+  // with the width measured before; its stray echoes from round the corner make the heading
+  // untrustworthy there. Where a wall ahead reaches into the side sensors' view, odometry
+  // carries the track.
+  if (scan_fresh_ && !std::isfinite(wall_in)) {
+    if (!estimate_.left_open && !estimate_.right_open) {
+      // A scan whose offset is an outlier (a pilaster's face, a recess) has its heading
+      // fitted to the same wrong wall: it is not used either.
+      const bool accepted =
+          estimate_.offset_valid && tracker_.UpdateOffset(estimate_.lateral_offset_in);
+      if (accepted && estimate_.heading_valid) tracker_.UpdateHeading(estimate_.heading_error_rad);
+    } else if (estimate_.left_open != estimate_.right_open && hallway_width_in_ > 0.0) {
+      const WallLine& plain = estimate_.left_open ? estimate_.right : estimate_.left;
+      if (plain.valid && plain.inliers >= 2) {
+        const double half = hallway_width_in_ / 2.0;
+        tracker_.UpdateOffset(estimate_.left_open ? plain.distance_in - half
+                                                  : half - plain.distance_in);
+      }
+    }
   }
   scan_fresh_ = false;
   HallwayEstimate steer_on = estimate_;

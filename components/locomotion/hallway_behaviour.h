@@ -23,7 +23,8 @@
 //   OBSTACLE   stopped: something is within the follower's stop distance in the direction
 //              of travel, or what looked like a wall ahead does not reach across the
 //              hallway (the sensors 30° either side of travel read the side walls past
-//              it). Following resumes by itself when it clears.
+//              it). Following resumes by itself when it clears; after
+//              obstacle_patience_s unmoved it is taken for a wall (turn or reverse).
 //   NO_SCAN    the newest scan is older than scan_timeout_s (or none came yet): the base is
 //              held, as steering blind is unsafe.
 //
@@ -47,9 +48,10 @@ struct HallwayTrackerNoise {
   double turn_scale_error = 0.02;
   double offset_walk_in_per_sqrt_in = 0.05;
   // A measurement this many standard deviations off the prediction is an outlier (a door
-  // recess taken for the wall); after `reinit_after` of them in a row the track restarts.
+  // recess taken for the wall, a pilaster's face); after `reinit_after` of them in a row
+  // the track restarts (0.8 s of scans: a track gone wrong is not kept long).
   double gate_sigmas = 4.0;
-  int reinit_after = 5;
+  int reinit_after = 8;
   // Reported as known below these standard deviations.
   double known_offset_sigma_in = 3.0;
   double known_heading_sigma_deg = 4.0;
@@ -67,7 +69,8 @@ class HallwayTracker {
 
   // The base moved ds_in along its forward axis and turned dtheta_rad (odometry).
   void Predict(double ds_in, double dtheta_rad);
-  void UpdateOffset(double offset_in);
+  // False when the measurement is set aside as an outlier.
+  bool UpdateOffset(double offset_in);
   void UpdateHeading(double heading_rad);
   // After an in-place turn of `rad` (already predicted from odometry): the hallway's axis
   // turned with the base, so the heading error drops by `rad`; the offset in the new
@@ -106,6 +109,9 @@ struct HallwayBehaviourConfig {
   double wall_memory_s = 1.0;
   // The turn is taken once the base is within this of its stopping point.
   double stop_tolerance_in = 2.0;
+  // Something in the way that does not move for this long is no person: it is taken for
+  // a corner or the end of the way (DetectTurn on the sides), as if it spanned the hallway.
+  double obstacle_patience_s = 5.0;
   // The hallway width assumed until a scan has measured one.
   double default_hallway_width_in = 120.0;
   // The navigation envelope of §6.4.2: within 1 ft of the axis and 7.5° of its direction.
@@ -180,6 +186,7 @@ class HallwayBehaviour {
   double wall_ahead_in_ = 0.0;
   double wall_odometer_in_ = 0.0;
   double wall_time_s_ = 0.0;
+  double obstacle_since_s_ = 0.0;
 
   int commanded_sign_ = 0;
   int travel_sign_ = +1;

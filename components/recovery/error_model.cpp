@@ -1,6 +1,7 @@
 #include "recovery/error_model.h"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -346,6 +347,47 @@ StudyConfig LoadStudyConfig(const std::string& path) {
 
 StudyConfig ParseStudyConfig(const std::string& text, const std::string& name) {
   return StudyConfigFromYaml(StrictYaml::LoadString(text, name));
+}
+
+std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment) {
+  const auto number = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4f", v);
+    return std::string(buf);
+  };
+  const auto distribution = [&](const std::map<map::DoorClass, double>& d) {
+    std::string s = "{";
+    for (const auto& [c, p] : d) {
+      s += (s.size() > 1 ? ", \"" : "\"") + std::string(map::DoorClassName(c)) + "\": " + number(p);
+    }
+    return s + "}";
+  };
+  std::string out;
+  std::string line;
+  for (char ch : comment + "\n") {
+    if (ch != '\n') {
+      line += ch;
+      continue;
+    }
+    if (!line.empty()) out += "# " + line + "\n";
+    line.clear();
+  }
+  out += "error_model:\n";
+  std::string source;
+  for (char ch : m.source) source += ch == '"' ? '\'' : ch;
+  out += "  source: \"" + source + "\"\n";
+  out += "  door_correct: " + number(m.door_correct) + "\n";
+  out += "  door_missized: " + number(m.door_missized) + "\n";
+  out += "  door_missed: " + number(m.door_missed) + "\n";
+  out += "  wall_false_door: " + number(m.wall_false_door) + "\n";
+  std::string missized = "{";
+  for (const auto& [c, row] : m.missized_to) {
+    missized += (missized.size() > 1 ? ", \"" : "\"") + std::string(map::DoorClassName(c)) +
+                "\": " + distribution(row);
+  }
+  out += "  missized_to: " + missized + "}\n";
+  out += "  false_door_classes: " + distribution(m.false_door_classes) + "\n";
+  return out;
 }
 
 }  // namespace stickrep::recovery

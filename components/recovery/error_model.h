@@ -55,6 +55,9 @@ struct ErrorModel {
 // Loads the `error_model:` file; throws InputError (file:line:key) on any problem.
 ErrorModel LoadErrorModel(const std::string& path);
 ErrorModel ParseErrorModel(const std::string& text, const std::string& name);
+// The model as an `error_model:` file that LoadErrorModel reads back; `comment` (lines
+// without '#') goes on top.
+std::string FormatErrorModelYaml(const ErrorModel& model, const std::string& comment);
 
 // The classes a mis-sized door of class `c` goes to when the file does not say: the
 // neighbouring single-door widths (30-32-36-40), or for a double door the other double.

@@ -41,6 +41,25 @@ TEST(ErrorModelFile, ReadsOptionalDistributions) {
   EXPECT_DOUBLE_EQ(m.false_door_classes.at(DoorClass::k30), 0.3);
 }
 
+TEST(ErrorModelFile, WrittenModelReadsBackTheSame) {
+  ErrorModel m;
+  m.source = "written \"here\"";
+  m.door_correct = 0.9;
+  m.door_missized = 0.07;
+  m.door_missed = 0.03;
+  m.wall_false_door = 0.05;
+  m.missized_to[DoorClass::k36] = {{DoorClass::k40, 0.75}, {DoorClass::k32, 0.25}};
+  m.false_door_classes = {{DoorClass::k30, 0.5}, {DoorClass::k40, 0.5}};
+  const std::string text = FormatErrorModelYaml(m, "first line\nsecond line");
+  EXPECT_EQ(text.rfind("# first line\n# second line\nerror_model:\n", 0), 0u) << text;
+  const ErrorModel back = ParseErrorModel(text, "written.yaml");
+  EXPECT_EQ(back.source, "written 'here'");
+  EXPECT_DOUBLE_EQ(back.door_correct, 0.9);
+  EXPECT_DOUBLE_EQ(back.wall_false_door, 0.05);
+  EXPECT_DOUBLE_EQ(back.missized_to.at(DoorClass::k36).at(DoorClass::k40), 0.75);
+  EXPECT_DOUBLE_EQ(back.false_door_classes.at(DoorClass::k30), 0.5);
+}
+
 TEST(ErrorModelFile, DoorRatesMustSumToOne) {
   try {
     ParseErrorModel(Model("", "0.2"), "m.yaml");

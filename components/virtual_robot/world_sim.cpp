@@ -187,7 +187,13 @@ void WorldSim::Step(double dt_s, double left_ftps, double right_ftps) {
     return;
   }
   const Eigen::Vector2d moved = next.position() - X_WR_.position();
-  if (moved.norm() > 1e-12) last_motion_ = moved;
+  // The travel direction: the way the base's forward axis points, or the opposite way when
+  // it drives backward. Turning in place (the wheels' travel cancels) leaves it as it was.
+  const double ds = 0.5 * (dl + dr);
+  if (std::abs(ds) > 1e-3 * std::max(std::abs(dl), std::abs(dr))) {
+    last_motion_ = Eigen::Vector2d(std::cos(X_WR_.theta_rad), std::sin(X_WR_.theta_rad)) *
+                   (ds > 0.0 ? 1.0 : -1.0);
+  }
   distance_in_ += moved.norm();
   left_travel_in_ += dl;
   right_travel_in_ += dr;
@@ -268,10 +274,23 @@ SimTruth WorldSim::Truth() const {
   const double length = (node_in_[edge + 1] - node_in_[edge]).norm();
   t.offset_in = length > 0.0 ? std::clamp((foot - node_in_[edge]).norm() / length * metric, 0.0, metric)
                              : 0.0;
-  t.forward_in_ring = last_motion_.dot(Unit(node_in_[edge], node_in_[edge + 1])) > 0.0;
 
-  // The nearest stretch of the hallway axis.
+  // The nearest stretch of the hallway axis. The travel direction is judged on it (at a
+  // corner, where two stretches are equally near, on the one the base travelled along).
   double nearest = std::numeric_limits<double>::infinity();
+  for (const world::OffsetSegment& seg : axis_) {
+    nearest = std::min(nearest, SegmentDistance(p, seg.a_in, seg.b_in));
+  }
+  double best_alignment = -1.0;
+  for (const world::OffsetSegment& seg : axis_) {
+    const double along = last_motion_.dot(Unit(seg.a_in, seg.b_in));
+    if (SegmentDistance(p, seg.a_in, seg.b_in) < nearest + 1.0 &&
+        std::abs(along) > best_alignment) {
+      best_alignment = std::abs(along);
+      t.forward_in_ring = along > 0.0;
+    }
+  }
+  nearest = std::numeric_limits<double>::infinity();
   for (int j = 0; j < static_cast<int>(axis_.size()); ++j) {
     const Eigen::Vector2d a = axis_[j].a_in, b = axis_[j].b_in;
     double f = 0.0;

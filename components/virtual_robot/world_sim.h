@@ -44,7 +44,9 @@ struct SimTruth {
   double offset_in = 0.0;
   bool optical_axis_on_wall = false;
   double distance_in = 0.0;       // true path length travelled (both directions count)
-  bool forward_in_ring = false;   // the last translation went in ring order
+  // The base last travelled in ring order (judged on the edge above; turning in place
+  // keeps the direction the base travelled before the turn).
+  bool forward_in_ring = false;
   // Relative to the nearest segment of the hallway axis (the mapped wall, its steps under
   // 3 ft passed straight, offset by half the hallway, mitred at corners): the signed offset of the base centre, positive toward the
   // mapped wall, and the heading error of the base's forward axis from the axis direction
@@ -135,7 +137,7 @@ class WorldSim {
   double footprint_radius_in_ = 7.5;
   world::Pose2d X_WR_;
   double left_travel_in_ = 0.0, right_travel_in_ = 0.0, distance_in_ = 0.0;
-  Eigen::Vector2d last_motion_{0.0, 0.0};
+  Eigen::Vector2d last_motion_{0.0, 0.0};  // travel direction of the last translation
   int collisions_ = 0;
   bool in_contact_ = false;
   std::mt19937_64 rng_;

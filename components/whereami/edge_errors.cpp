@@ -1,0 +1,141 @@
+#include "whereami/edge_errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+namespace stickrep::whereami {
+
+void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
+  true_doors += o.true_doors;
+  correct += o.correct;
+  missized += o.missized;
+  missed += o.missed;
+  true_walls += o.true_walls;
+  false_doors += o.false_doors;
+  for (int t = 0; t < map::kDoorClassCount; ++t) {
+    false_class[t] += o.false_class[t];
+    for (int s = 0; s < map::kDoorClassCount; ++s) missized_to[t][s] += o.missized_to[t][s];
+  }
+  wall_error_in.insert(wall_error_in.end(), o.wall_error_in.begin(), o.wall_error_in.end());
+}
+
+recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
+  recovery::ErrorModel m;
+  m.source = source;
+  const double doors = std::max<long>(1, true_doors);
+  m.door_correct = correct / doors;
+  m.door_missized = missized / doors;
+  m.door_missed = 1.0 - m.door_correct - m.door_missized;
+  m.wall_false_door = static_cast<double>(false_doors) / std::max<long>(1, true_walls);
+  for (int t = 0; t < map::kDoorClassCount; ++t) {
+    long row = 0;
+    for (long n : missized_to[t]) row += n;
+    if (row == 0) continue;
+    for (int s = 0; s < map::kDoorClassCount; ++s) {
+      if (missized_to[t][s] > 0) {
+        m.missized_to[static_cast<map::DoorClass>(t)][static_cast<map::DoorClass>(s)] =
+            static_cast<double>(missized_to[t][s]) / row;
+      }
+    }
+  }
+  long fp = 0;
+  for (long n : false_class) fp += n;
+  for (int c = 0; c < map::kDoorClassCount && fp > 0; ++c) {
+    if (false_class[c] > 0) {
+      m.false_door_classes[static_cast<map::DoorClass>(c)] = static_cast<double>(false_class[c]) / fp;
+    }
+  }
+  return m;
+}
+
+EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
+                                 const std::vector<map::SensedEdge>& sensed,
+                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
+                                 const std::vector<TruthSample>& truth, double from_in,
+                                 double to_in) {
+  EdgeErrorCounts c;
+  const double lo = std::min(from_in, to_in), hi = std::max(from_in, to_in);
+  // Where each true edge was seen: the odometer range of its run of samples. An edge passed
+  // twice (a lap) is taken once per pass.
+  struct Passage {
+    int edge;
+    double first_in, last_in;
+  };
+  std::vector<Passage> passed;
+  for (const TruthSample& s : truth) {
+    if (s.view_edge < 0) continue;
+    if (passed.empty() || passed.back().edge != s.view_edge) {
+      passed.push_back({s.view_edge, s.odometer_in, s.odometer_in});
+    } else {
+      passed.back().last_in = s.odometer_in;
+    }
+  }
+  // Sensed doors by the true edge their centre lay on.
+  std::map<int, std::vector<std::size_t>> doors_on;  // passage index -> sensed indices
+  for (std::size_t i = 0; i < sensed.size() && i < spans.size(); ++i) {
+    if (!map::IsDoorCode(sensed[i].code)) continue;
+    const double centre = 0.5 * (spans[i].from_in + spans[i].to_in);
+    if (centre < lo || centre > hi) continue;
+    for (std::size_t p = 0; p < passed.size(); ++p) {
+      const double a = std::min(passed[p].first_in, passed[p].last_in);
+      const double b = std::max(passed[p].first_in, passed[p].last_in);
+      if (centre >= a - 3.0 && centre <= b + 3.0) {
+        doors_on[static_cast<int>(p)].push_back(i);
+        break;
+      }
+    }
+  }
+  // The class each passage's door was sensed with (for wall length checks).
+  std::vector<std::optional<std::size_t>> matched(passed.size());
+  for (std::size_t p = 0; p < passed.size(); ++p) {
+    const double a = std::min(passed[p].first_in, passed[p].last_in);
+    const double b = std::max(passed[p].first_in, passed[p].last_in);
+    if (a < lo || b > hi || p == 0 || p + 1 == passed.size()) continue;  // not passed whole
+    const map::Edge& edge = view_ring.edges[passed[p].edge];
+    const auto it = doors_on.find(static_cast<int>(p));
+    if (edge.door_class) {
+      ++c.true_doors;
+      if (it == doors_on.end()) {
+        ++c.missed;
+        continue;
+      }
+      const std::size_t first = it->second.front();
+      const map::SymbolCode want = map::DoorCode(*edge.door_class);
+      if (sensed[first].code == want) {
+        ++c.correct;
+        matched[p] = first;
+      } else {
+        ++c.missized;
+        c.missized_to[static_cast<int>(*edge.door_class)][sensed[first].code - 1]++;
+      }
+      // More sensed doors on the same true door are false doors as well.
+      for (std::size_t k = 1; k < it->second.size(); ++k) {
+        ++c.false_doors;
+        c.false_class[sensed[it->second[k]].code - 1]++;
+      }
+    } else if (edge.IsWall()) {
+      ++c.true_walls;
+      if (it == doors_on.end()) continue;
+      for (std::size_t k : it->second) {
+        ++c.false_doors;
+        c.false_class[sensed[k].code - 1]++;
+      }
+    }
+  }
+  // Walls between two correctly sensed doors: the sensed wall right after the first.
+  for (std::size_t p = 0; p + 2 < passed.size(); ++p) {
+    if (!matched[p] || !matched[p + 2]) continue;
+    const map::Edge& wall = view_ring.edges[passed[p + 1].edge];
+    const std::size_t next = *matched[p] + 1;
+    if (!wall.IsWall() || next >= sensed.size() || next + 1 != *matched[p + 2] ||
+        sensed[next].code != map::kWallCode) {
+      continue;
+    }
+    c.wall_error_in.push_back(sensed[next].metric_in - wall.metric_in);
+  }
+  return c;
+}
+
+}  // namespace stickrep::whereami

@@ -1,0 +1,50 @@
+#pragma once
+
+// What the assembled edges of a run were, held against the edges the robot truly passed:
+// the live counterpart of Table 6.10, per sensed edge rather than per frame. Doors are
+// matched by where their centre was; a true door with no sensed door there is missed, a
+// sensed door on a wall is a false door. The counts become an error model in the schema of
+// configs/error_model_paper.yaml, for the Bayes matcher.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "localizer/edge_assembler.h"
+#include "recovery/error_model.h"
+#include "stickrep/map.h"
+#include "stickrep/sequence_matcher.h"
+
+namespace stickrep::whereami {
+
+// Where the optical axis met the wall at one odometer reading: a view edge (the map as the
+// hallway follower senses it, map::HallwayView), or -1 when it met no mapped wall.
+struct TruthSample {
+  double odometer_in = 0.0;
+  int view_edge = -1;
+};
+
+struct EdgeErrorCounts {
+  long true_doors = 0, correct = 0, missized = 0, missed = 0;
+  long true_walls = 0, false_doors = 0;
+  // [true class][sensed class] of mis-sized doors; classes of false doors.
+  std::array<std::array<long, map::kDoorClassCount>, map::kDoorClassCount> missized_to{};
+  std::array<long, map::kDoorClassCount> false_class{};
+  // Sensed minus true length of walls between two doors that were both sensed correctly.
+  std::vector<double> wall_error_in;
+
+  void Add(const EdgeErrorCounts& other);
+  // The rates as an error model (door rates per true door, false doors per true wall).
+  recovery::ErrorModel ToModel(const std::string& source) const;
+};
+
+// Compares the sensed edges (with the odometer readings they spanned) with the true view
+// edges passed, counting only true edges passed whole between `from_in` and `to_in`
+// (odometer readings; either order).
+EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
+                                 const std::vector<map::SensedEdge>& sensed,
+                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
+                                 const std::vector<TruthSample>& truth, double from_in,
+                                 double to_in);
+
+}  // namespace stickrep::whereami

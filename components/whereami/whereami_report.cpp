@@ -1,0 +1,274 @@
+#include "whereami/whereami_report.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <atomic>
+#include <exception>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "common/input_error.h"
+#include "recovery/study_report.h"
+
+namespace stickrep::whereami {
+
+namespace {
+
+std::string Describe(const std::optional<Recovery>& r) {
+  if (!r) return "no pose";
+  return fmt::format("{} after {} edges, {:.1f} ft, {:.1f} s: {} edge {} {}, truth edge {} {}",
+                     r->correct ? "CORRECT" : "INCORRECT", r->edges_sensed, r->distance_ft,
+                     r->time_s, r->ring_id, r->edge, r->forward ? "fwd" : "back", r->truth_edge,
+                     r->truth_forward ? "fwd" : "back");
+}
+
+nlohmann::json ToJson(const std::optional<Recovery>& r) {
+  if (!r) return nullptr;
+  return {{"ring", r->ring_id},        {"edge", r->edge},
+          {"forward", r->forward},     {"truth_ring", r->truth_ring_id},
+          {"truth_edge", r->truth_edge}, {"truth_forward", r->truth_forward},
+          {"correct", r->correct},     {"edges_sensed", r->edges_sensed},
+          {"distance_ft", r->distance_ft}, {"time_s", r->time_s}};
+}
+
+}  // namespace
+
+Summary Summarize(const std::vector<RunResult>& results) {
+  Summary s;
+  s.runs = static_cast<int>(results.size());
+  for (const RunResult& r : results) {
+    s.collisions += r.collisions;
+    s.max_offset_in = std::max(s.max_offset_in, r.max_offset_in);
+    s.max_heading_deg = std::max(s.max_heading_deg, r.max_heading_deg);
+    if (r.kidnapped) {
+      ++s.kidnapped;
+      s.lost_detected += r.lost_detected;
+      s.recovered_correct += r.second && r.second->correct;
+    }
+    if (!r.first) continue;
+    ++s.localized;
+    s.correct += r.first->correct;
+    s.mean_edges += r.first->edges_sensed;
+    s.mean_distance_ft += r.first->distance_ft;
+    s.mean_time_s += r.first->time_s;
+  }
+  if (s.localized > 0) {
+    s.mean_edges /= s.localized;
+    s.mean_distance_ft /= s.localized;
+    s.mean_time_s /= s.localized;
+  }
+  return s;
+}
+
+std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& options) {
+  std::vector<RunResult> results(static_cast<size_t>(options.runs));
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto worker = [&] {
+    for (int i = next++; i < options.runs; i = next++) {
+      try {
+        RunOptions run;
+        run.seed = options.first_seed + static_cast<std::uint64_t>(i);
+        run.max_sim_s = options.max_sim_s;
+        run.kidnap_after_s = options.kidnap_after_s;
+        run.kidnap_jump_in = options.kidnap_jump_in;
+        run.trace = options.trace;
+        run.measure_ft = options.measure_ft;
+        if (!options.rings.empty()) run.ring_id = options.rings[i % options.rings.size()];
+        results[static_cast<size_t>(i)] = RunWhereAmI(setup, run);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int k = 0; k < std::max(1, options.threads); ++k) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return results;
+}
+
+namespace {
+
+// Measuring mode: the assembled edges' error rates beside Table 6.10, and the error model.
+int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out) {
+  out << fmt::format("Assembled edges against the truth: map '{}', rings {}, seeds {}..{}, {:g} "
+                     "ft each (from 20 ft on)\n",
+                     setup.map->info().name,
+                     options.rings.empty() ? std::string("(the virtual robot's)")
+                                           : fmt::format("{}", fmt::join(options.rings, ", ")),
+                     options.first_seed,
+                     options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
+                     options.measure_ft);
+  EdgeErrorCounts total;
+  for (const RunResult& r : RunSeeds(setup, options)) {
+    const EdgeErrorCounts& c = r.errors;
+    out << fmt::format("seed {:>4}  {} true doors: {} correct, {} mis-sized, {} missed; {} true "
+                       "walls, {} false doors\n",
+                       r.seed, c.true_doors, c.correct, c.missized, c.missed, c.true_walls,
+                       c.false_doors);
+    if (options.trace) {
+      out << "            sensed: " << r.sensed_trace << "\n            passed: " << r.true_trace
+          << "\n";
+    }
+    total.Add(c);
+  }
+  const std::string source =
+      fmt::format("measured by stickrep-whereami on {} ({}), seeds {}..{}, {} true doors, {} true "
+                  "walls",
+                  setup.map->info().name,
+                  options.rings.empty() ? std::string("the virtual robot's ring")
+                                        : fmt::format("{}", fmt::join(options.rings, " ")),
+                  options.first_seed,
+                  options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
+                  total.true_doors, total.true_walls);
+  const recovery::ErrorModel model = total.ToModel(source);
+  out << fmt::format("\nper assembled edge (%)             paper Table 6.10   ours\n");
+  out << fmt::format("  true doors sensed with their class   {:>8.2f} {:>8.2f}\n", 83.67,
+                     100.0 * model.door_correct);
+  out << fmt::format("  true doors mis-sized                 {:>8.2f} {:>8.2f}\n", 10.20,
+                     100.0 * model.door_missized);
+  out << fmt::format("  true doors missed                    {:>8.2f} {:>8.2f}\n", 6.12,
+                     100.0 * model.door_missed);
+  out << fmt::format("  false doors per true wall            {:>8.2f} {:>8.2f}\n", 15.91,
+                     100.0 * model.wall_false_door);
+  if (!total.wall_error_in.empty()) {
+    double mean = 0.0, sq = 0.0;
+    for (double e : total.wall_error_in) mean += e;
+    mean /= total.wall_error_in.size();
+    for (double e : total.wall_error_in) sq += (e - mean) * (e - mean);
+    out << fmt::format("  walls between two doors sensed right: {} measured, sensed - true {:+.2f} "
+                       "in mean, {:.2f} in standard deviation\n",
+                       total.wall_error_in.size(), mean,
+                       std::sqrt(sq / std::max<std::size_t>(1, total.wall_error_in.size() - 1)));
+  }
+  out << "(Table 6.10 counts frames; ours counts the edges the localizer is given, after the "
+         "frames of a door are voted into one edge)\n";
+  if (!options.error_model_out.empty()) {
+    model.Validate();
+    std::ofstream f(options.error_model_out);
+    if (!f) throw InputError(options.error_model_out, 0, "--write-error-model", "cannot be written");
+    f << recovery::FormatErrorModelYaml(
+        model, "The landmark pipeline's errors per assembled edge, measured on the live logic\n"
+               "(stickrep-whereami --measure-ft); schema of configs/error_model_paper.yaml.");
+    out << "error model written to " << options.error_model_out << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
+  try {
+    if (options.runs < 1) throw InputError("--runs", 0, "runs", "must be at least 1");
+    const RunSetup setup =
+        LoadRunSetup(options.config_dir, options.map_file, options.virtual_robot_file);
+    for (const std::string& ring : options.rings) {
+      if (setup.map->FindRing(ring) < 0) {
+        throw InputError(setup.map_file, 0, "--ring", "no ring '" + ring + "' in the map");
+      }
+    }
+    if (options.measure_ft > 0.0) return Measure(setup, options, out);
+    out << fmt::format(
+        "Where-am-I runs without middleware: map '{}' ({}), seeds {}..{}, {:.0f} in hallway, "
+        "start up to {:g} in off the axis and {:g} deg turned; matcher {}{}\n",
+        setup.map->info().name, setup.map_file, options.first_seed,
+        options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
+        setup.virtual_robot.world.hallway_width_in,
+        setup.virtual_robot.start_lateral_offset_max_in,
+        setup.virtual_robot.start_heading_error_max_deg,
+        setup.localizer.localizer.method == localizer::MatchMethod::kBayes ? "bayes"
+                                                                           : "deterministic",
+        options.kidnap_after_s >= 0.0
+            ? fmt::format(", kidnapped {:g} s after the pose by {:g} in", options.kidnap_after_s,
+                          options.kidnap_jump_in)
+            : "");
+    const std::vector<RunResult> results = RunSeeds(setup, options);
+    nlohmann::json runs = nlohmann::json::array();
+    for (const RunResult& r : results) {
+      out << fmt::format("seed {:>4}  start {}\n            {}", r.seed, r.start, Describe(r.first));
+      if (r.kidnapped) {
+        out << fmt::format("\n            kidnapped: {}; then {}",
+                           r.lost_detected
+                               ? fmt::format("LOST after {:.1f} ft", r.lost_after_ft)
+                               : std::string("never LOST"),
+                           Describe(r.second));
+      }
+      out << fmt::format("\n            {} frames, {} doors seen, {} collisions, envelope max "
+                         "{:.1f} in / {:.1f} deg; {:.1f} s simulated, {}\n",
+                         r.frames, r.doors_observed, r.collisions, r.max_offset_in,
+                         r.max_heading_deg, r.sim_s, r.ended);
+      if (options.trace) {
+        out << "            sensed: " << r.sensed_trace << "\n            passed: " << r.true_trace
+            << "\n";
+      }
+      runs.push_back({{"seed", r.seed},
+                      {"start", r.start},
+                      {"first", ToJson(r.first)},
+                      {"kidnapped", r.kidnapped},
+                      {"lost_detected", r.lost_detected},
+                      {"lost_after_ft", r.lost_after_ft},
+                      {"second", ToJson(r.second)},
+                      {"frames", r.frames},
+                      {"doors_observed", r.doors_observed},
+                      {"collisions", r.collisions},
+                      {"max_offset_in", r.max_offset_in},
+                      {"max_heading_deg", r.max_heading_deg},
+                      {"sim_s", r.sim_s},
+                      {"ended", r.ended}});
+    }
+    const Summary s = Summarize(results);
+    out << fmt::format(
+        "\n{} runs: {} localized, {} correct ({:.1f} %); {} collisions; envelope beyond 8 ft of "
+        "corners after 20 ft: max |offset| {:.1f} in, max |heading error| {:.1f} deg\n",
+        s.runs, s.localized, s.correct, 100.0 * s.correct / s.runs, s.collisions,
+        s.max_offset_in, s.max_heading_deg);
+    if (s.kidnapped > 0) {
+      out << fmt::format("kidnapped {}: LOST detected {}, recovered correctly {}\n", s.kidnapped,
+                         s.lost_detected, s.recovered_correct);
+    }
+    out << fmt::format("\n{:<34} {:>7} {:>12} {:>8} {:>11}\n", "", "edges", "distance ft",
+                       "time s", "accuracy %");
+    out << fmt::format("{:<34} {:>7.2f} {:>12.2f} {:>8.2f} {:>11.1f}\n",
+                       "ours: rendered frames, live logic", s.mean_edges, s.mean_distance_ft,
+                       s.mean_time_s, 100.0 * s.correct / s.runs);
+    if (const auto paper =
+            recovery::report::PaperSummaryFor(setup.map->info().name, /*with_error=*/true)) {
+      out << fmt::format("{:<34} {:>7.2f} {:>12.2f} {:>8.2f} {:>11.1f}\n",
+                         "paper Table 6.22, modeled error", paper->edges, paper->distance_ft,
+                         paper->time_s, paper->accuracy_pct);
+    }
+    out << "(edges: the localizer's sequence when it declared the pose; distance and time: "
+           "travelled from the start, aligning and turns included; accuracy over all runs)\n";
+    if (!options.json_path.empty()) {
+      std::ofstream f(options.json_path);
+      if (!f) throw InputError(options.json_path, 0, "--json", "cannot be written");
+      f << nlohmann::json{{"map", setup.map->info().name},
+                          {"first_seed", options.first_seed},
+                          {"runs", runs},
+                          {"correct", s.correct},
+                          {"localized", s.localized},
+                          {"mean_edges", s.mean_edges},
+                          {"mean_distance_ft", s.mean_distance_ft},
+                          {"mean_time_s", s.mean_time_s}}
+               .dump(2)
+        << "\n";
+    }
+    return 0;
+  } catch (const InputError& e) {
+    err << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    err << "stickrep-whereami: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+}
+
+}  // namespace stickrep::whereami

@@ -1,0 +1,310 @@
+#include "whereami/whereami_run.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/config_paths.h"
+#include "common/strict_yaml.h"
+#include "common/units.h"
+#include "executive/executive.h"
+#include "landmark/landmark_pipeline.h"
+#include "localizer/localizer.h"
+#include "locomotion/drive.h"
+#include "locomotion/hallway_behaviour.h"
+#include "sonar/sonar_gate.h"
+#include "stickrep/hallway_view.h"
+#include "stickrep/map_io.h"
+#include "stickrep/sequence_matcher.h"
+#include "virtual_robot/world_sim.h"
+
+namespace stickrep::whereami {
+
+namespace {
+
+// The envelope is judged on straight runs (beyond 8 ft of a corner) once the robot has had
+// 20 ft to align from its start, as the virtual robot process judges it.
+constexpr double kEnvelopeCornerDistanceIn = 96.0;
+constexpr double kEnvelopeSettleDistanceIn = 240.0;
+
+map::DoorClass ToMap(sensing::DoorClass c) {
+  switch (c) {
+    case sensing::DoorClass::kDoor30: return map::DoorClass::k30;
+    case sensing::DoorClass::kDoor32: return map::DoorClass::k32;
+    case sensing::DoorClass::kDoor36: return map::DoorClass::k36;
+    case sensing::DoorClass::kDoor40: return map::DoorClass::k40;
+    case sensing::DoorClass::kDouble30: return map::DoorClass::k30_30;
+    case sensing::DoorClass::kDouble36: return map::DoorClass::k36_36;
+  }
+  return map::DoorClass::k36;
+}
+
+std::string Symbol(map::SymbolCode code, double metric_in, double angle_deg) {
+  std::string s = map::SymbolName(code);
+  if (map::CodeHasMetric(code)) s += fmt::format(":{:.0f}", metric_in);
+  if (std::isfinite(angle_deg) && std::abs(angle_deg - 180.0) > 1.0) {
+    s = fmt::format("<{:.0f}> ", angle_deg) + s;
+  }
+  return s;
+}
+
+StrictYaml Section(const std::string& file, const std::string& key) {
+  return StrictYaml::LoadFile(file).Child(key);
+}
+
+// A periodic event on the simulated clock.
+struct Every {
+  double period_s;
+  double next_s = 0.0;
+  bool Due(double t) {
+    if (t + 1e-9 < next_s) return false;
+    next_s += period_s;
+    return true;
+  }
+};
+
+}  // namespace
+
+RunSetup LoadRunSetup(const std::string& config_dir, const std::string& map_file,
+                      const std::string& virtual_robot_file) {
+  RunSetup s;
+  const std::string dir = config_dir.empty() ? DefaultConfigDir() : config_dir;
+  // Only the two paths are needed of system.yaml; the processes validate the rest.
+  const std::string system_file = dir + "/system.yaml";
+  const StrictYaml system = Section(system_file, "system");
+  const std::string robot_file = ResolvePath(system.Get<std::string>("robot_file"), system_file);
+  s.map_file =
+      map_file.empty() ? ResolvePath(system.Get<std::string>("map_file"), system_file) : map_file;
+  s.map = std::make_shared<const map::Map>(map::LoadMap(s.map_file));
+  s.robot = sensing::LoadRobotConfigFile(robot_file);
+  s.virtual_robot = virtual_robot::LoadVirtualRobotConfig(Section(
+      virtual_robot_file.empty() ? dir + "/virtual_robot.yaml" : virtual_robot_file,
+      "virtual_robot"));
+  s.landmark = landmark::LoadLandmarkConfig(Section(dir + "/landmark.yaml", "landmark"));
+  s.localizer = localizer::LoadLocalizerSettings(Section(dir + "/localizer.yaml", "localizer"));
+  s.locomotion =
+      locomotion::LoadLocomotionConfig(Section(dir + "/locomotion.yaml", "locomotion"), s.robot);
+  s.executive = executive::LoadExecutiveConfig(Section(dir + "/executive.yaml", "executive"));
+  return s;
+}
+
+RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
+  const map::Map& map = *setup.map;
+  const sensing::RobotConfig& robot = setup.robot;
+  virtual_robot::VirtualRobotConfig vr = setup.virtual_robot;
+  vr.seed = options.seed;
+  if (!options.ring_id.empty()) vr.world.ring_id = options.ring_id;
+  const bool measuring = options.measure_ft > 0.0;
+  const int ring = vr.world.ring_id.empty() ? 0 : map.FindRing(vr.world.ring_id);
+  if (ring < 0) throw std::invalid_argument("no ring '" + vr.world.ring_id + "' in the map");
+  const virtual_robot::StartPlacement start = virtual_robot::DrawStart(vr, map.ring(ring));
+  virtual_robot::WorldSimConfig world = vr.world;
+  world.start_lateral_offset_in = start.lateral_offset_in;
+  world.start_heading_error_deg = start.heading_error_deg;
+  virtual_robot::WorldSim sim(map, robot, world, start.ring_position_in, vr.seed);
+
+  const sonar::SonarGateConfig gate = sonar::GateConfigFor(robot);
+  locomotion::HallwayBehaviour behaviour(setup.locomotion.behaviour);
+  locomotion::Odometer odometer(robot.base.wheel_base_in);
+  const landmark::LandmarkPipeline pipeline(robot, setup.landmark.detector,
+                                            setup.landmark.estimator);
+  const map::HallwayView view(map, setup.localizer.view);
+  const localizer::LocalizerConfig localizer_config =
+      localizer::MakeLocalizerConfig(setup.localizer, view.view());
+  localizer::Localizer localizer(view.view(), localizer_config);
+  // Measuring: the same assembly as the localizer's, never restarted.
+  localizer::EdgeAssembler assembler(localizer_config.assembler);
+  std::vector<TruthSample> truth_samples;
+  executive::Executive executive(map, setup.executive.mission);
+  for (const std::string& name : setup.executive.mission.required_components) {
+    executive.mission().OnComponentActive(name);
+  }
+
+  RunResult result;
+  result.seed = vr.seed;
+  {
+    const virtual_robot::SimTruth t = sim.Truth();
+    result.start = fmt::format("ring '{}' edge {} + {:.1f} in, {:+.1f} in off the axis, heading "
+                               "{:+.1f} deg",
+                               sim.ring_id(), t.edge_index, t.offset_in, t.lateral_offset_in,
+                               RadToDeg(t.heading_error_rad));
+  }
+
+  Every sim_step{1.0 / vr.sim_rate_hz};
+  Every encoders{1.0 / vr.encoder_rate_hz};
+  Every sonar{1.0 / vr.sonar_rate_hz};
+  Every camera{1.0 / vr.camera_rate_hz};
+  const int coaxial = robot.camera.coaxial_sensor;
+  sensing::SonarScan last_scan;
+  locomotion::WheelSpeeds wheels;
+  bool moving = false;
+  double epoch_in = 0.0, epoch_s = 0.0;  // where the current recovery began
+  double kidnap_at_s = -1.0;
+  bool was_localized = false;
+
+  const auto judge = [&](double t) {
+    const localizer::PoseEstimate& e = localizer.estimate();
+    const localizer::Hypothesis h = localizer::OnOriginalMap(view, e.hypotheses.front());
+    const virtual_robot::SimTruth truth = sim.Truth();
+    Recovery r;
+    r.ring_id = map.ring(h.ring).id;
+    r.edge = h.edge;
+    r.forward = h.dir > 0;
+    r.truth_ring_id = sim.ring_id();
+    r.truth_edge = truth.edge_index;
+    r.truth_forward = truth.forward_in_ring;
+    r.correct = virtual_robot::PoseMatchesTruth(r.ring_id, r.edge, r.forward, truth,
+                                                sim.ring_id(), sim.edge_count());
+    r.edges_sensed = e.edges_sensed;
+    r.distance_ft = InchesToFeet(truth.distance_in - epoch_in);
+    r.time_s = t - epoch_s;
+    executive.OnLocalized(executive::MapPose{h.ring, h.edge, h.dir, h.offset_in},
+                          fmt::format("ring '{}' edge {}", r.ring_id, r.edge));
+    return r;
+  };
+
+  int last_view_edge = -1;
+  const map::Ring& view_ring = view.view().ring(ring);
+  double t = 0.0;
+  for (; t < options.max_sim_s; t = sim_step.next_s) {
+    if (options.trace) {
+      const int e = view.ViewEdge(ring, sim.Truth().edge_index);
+      if (e != last_view_edge) {
+        last_view_edge = e;
+        const map::Edge& edge = view_ring.edges[e];
+        result.true_trace += fmt::format("{}{}[{}] ", result.true_trace.empty() ? "" : "",
+                                         Symbol(map::CodeOf(edge), edge.metric_in, NAN), e);
+      }
+    }
+    sim_step.Due(t);
+    if (sonar.Due(t)) {
+      const sonar::GatedScan g = sonar::GateScan(sim.Sonar(), gate);
+      std::vector<locomotion::SonarRange> ranges(sonar::kRingSize);
+      last_scan = {};
+      for (int k = 0; k < sonar::kRingSize; ++k) {
+        const bool valid = g.state[k] == sonar::ReadingState::kValid;
+        ranges[k] = {g.range_in[k], valid, g.state[k] == sonar::ReadingState::kOutsideFootprint};
+        last_scan.ranges_in.push_back(g.range_in[k]);
+        last_scan.valid.push_back(valid);
+      }
+      behaviour.OnScan(ranges, t);
+      if (last_scan.valid[coaxial]) {
+        localizer.SetWallRange(last_scan.ranges_in[coaxial] + robot.sonar_ring.head_radius_in);
+        assembler.SetWallRange(last_scan.ranges_in[coaxial] + robot.sonar_ring.head_radius_in);
+      }
+    }
+    if (camera.Due(t)) {
+      const std::vector<std::uint8_t> frame = sim.RenderFrame();
+      ++result.frames;
+      const vision::ImageView image{sim.image_width_px(), sim.image_height_px(),
+                                    sim.image_width_px(), "mono8", frame.data(), frame.size()};
+      const landmark::FrameOutcome out = pipeline.Process(image, last_scan);
+      if (out.kind == landmark::FrameOutcome::Kind::kObservation) {
+        ++result.doors_observed;
+        const sensing::LandmarkObservation& o = out.observation;
+        const localizer::DoorSighting sighting{ToMap(o.door_class), o.width_in, o.confidence,
+                                               odometer.distance_in() + out.center_offset_in};
+        localizer.AddSighting(sighting);
+        assembler.AddSighting(sighting);
+      }
+    }
+    if (encoders.Due(t)) {
+      odometer.Update(sim.left_travel_in(), sim.right_travel_in());
+      executive.OnOdometer(odometer.distance_in());
+      if (measuring) {
+        assembler.Advance(odometer.distance_in(), odometer.pose().heading_rad);
+        const virtual_robot::SimTruth truth = sim.Truth();
+        truth_samples.push_back({odometer.distance_in(),
+                                 truth.optical_axis_on_wall ? view.ViewEdge(ring, truth.edge_index)
+                                                            : -1});
+        if (InchesToFeet(truth.distance_in) >= options.measure_ft) {
+          result.ended = fmt::format("measured over {:.0f} ft", options.measure_ft);
+          break;
+        }
+      } else if (localizer.Advance(odometer.distance_in(), odometer.pose().heading_rad)) {
+        const localizer::PoseEstimate& e = localizer.estimate();
+        if (e.status == localizer::Status::kLocalized && !e.hypotheses.empty()) {
+          if (!was_localized) {
+            const Recovery r = judge(t);
+            if (!result.first) {
+              result.first = r;
+              if (options.kidnap_after_s < 0.0) {
+                result.ended = "localized";
+                break;
+              }
+              // Keep travelling: a goal half the ring ahead.
+              const int n = map.ring(ring).EdgeCount();
+              const int ahead = r.forward ? r.edge + n / 2 : r.edge - n / 2 + n;
+              executive.OnGoal("far", fmt::format("{}/{}", r.ring_id, ahead % n));
+              kidnap_at_s = t + options.kidnap_after_s;
+            } else if (result.kidnapped) {
+              result.second = r;
+              result.ended = "localized again after the kidnap";
+              break;
+            }
+          }
+          was_localized = true;
+        } else if (e.status == localizer::Status::kLost) {
+          if (result.kidnapped && !result.lost_detected) {
+            result.lost_detected = true;
+            result.lost_after_ft = InchesToFeet(sim.Truth().distance_in - epoch_in);
+          }
+          executive.OnLost();
+          was_localized = false;
+        } else {
+          was_localized = false;
+        }
+      }
+      const executive::MotionRequest request = executive.mission().Motion();
+      if (request.move) {
+        if (!moving) behaviour.Reset();
+        moving = true;
+        const locomotion::BehaviourOutput out =
+            behaviour.Step(request.linear_speed_ftps, odometer.pose().heading_rad,
+                           odometer.distance_in(), t, encoders.period_s);
+        wheels = locomotion::ToWheelSpeeds(out.linear_ftps, out.angular_radps,
+                                           setup.locomotion.limits);
+        executive.mission().OnMotionState(out.in_envelope, t);
+      } else {
+        moving = false;
+        wheels = {};
+      }
+    }
+    if (kidnap_at_s >= 0.0 && t >= kidnap_at_s && !result.kidnapped) {
+      result.kidnapped = true;
+      sim.Teleport(sim.RingPosition() + options.kidnap_jump_in);
+      epoch_in = sim.Truth().distance_in;
+      epoch_s = t;
+    }
+    sim.Step(sim_step.period_s, wheels.left_ftps, wheels.right_ftps);
+    const virtual_robot::SimTruth truth = sim.Truth();
+    if (truth.corner_distance_in > kEnvelopeCornerDistanceIn &&
+        truth.distance_in > kEnvelopeSettleDistanceIn) {
+      result.max_offset_in = std::max(result.max_offset_in, std::abs(truth.lateral_offset_in));
+      result.max_heading_deg =
+          std::max(result.max_heading_deg, std::abs(RadToDeg(truth.heading_error_rad)));
+    }
+  }
+  if (result.ended.empty()) {
+    result.ended = fmt::format("no pose after {:.0f} s simulated", options.max_sim_s);
+  }
+  result.sim_s = t;
+  result.collisions = sim.Truth().collisions;
+  const std::vector<map::SensedEdge>& sensed =
+      measuring ? assembler.sequence() : localizer.sensed_sequence();
+  for (const map::SensedEdge& e : sensed) {
+    result.sensed_trace += Symbol(e.code, e.metric_in, e.angle_deg) + " ";
+  }
+  if (measuring && !truth_samples.empty()) {
+    // From 20 ft on: the robot has aligned and the partial first edges are behind.
+    const double start = truth_samples.front().odometer_in;
+    const double end = truth_samples.back().odometer_in;
+    const double sign = end >= start ? 1.0 : -1.0;
+    result.errors = CompareWithTruth(view.view().ring(ring), assembler.sequence(), assembler.spans(),
+                                     truth_samples, start + sign * 240.0, end);
+  }
+  return result;
+}
+
+}  // namespace stickrep::whereami

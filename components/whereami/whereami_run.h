@@ -1,0 +1,103 @@
+#pragma once
+
+// The whole Where-am-I run without middleware: the virtual robot's world, the sonar gate,
+// locomotion's hallway behaviour and odometry, the landmark pipeline, the localizer and the
+// mission executive, each the same logic class its process wraps, read from the same
+// configuration files, stepped in simulated time at the processes' rates. Deterministic for
+// a seed, and as fast as the renderer allows: it measures what the live stack does without
+// the scheduling of seven processes on one machine.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "executive/executive_config.h"
+#include "landmark/landmark_config.h"
+#include "localizer/localizer_config.h"
+#include "locomotion/locomotion_config.h"
+#include "sensing/robot_config.h"
+#include "stickrep/map.h"
+#include "virtual_robot/virtual_robot_config.h"
+#include "whereami/edge_errors.h"
+
+namespace stickrep::whereami {
+
+// Everything a run is built from, as the processes read it.
+struct RunSetup {
+  std::string map_file;
+  std::shared_ptr<const map::Map> map;
+  sensing::RobotConfig robot;
+  virtual_robot::VirtualRobotConfig virtual_robot;
+  landmark::LandmarkConfig landmark;
+  localizer::LocalizerSettings localizer;
+  locomotion::LocomotionConfig locomotion;
+  executive::ExecutiveConfig executive;
+};
+
+// Reads system.yaml, robot.yaml and the sections of the virtual robot, landmark,
+// localizer, locomotion and executive processes from `config_dir` (configs/ by default).
+// `map_file` and `virtual_robot_file`, when not empty, replace system.yaml's map and
+// virtual_robot.yaml. Throws InputError naming the file, line and key of a bad value.
+RunSetup LoadRunSetup(const std::string& config_dir, const std::string& map_file = "",
+                      const std::string& virtual_robot_file = "");
+
+struct RunOptions {
+  std::uint64_t seed = 1;        // replaces the virtual robot's seed
+  double max_sim_s = 600.0;      // give up after this much simulated time
+  // Pose maintenance: once localized, send a goal half the ring ahead (so the robot keeps
+  // travelling) and kidnap the robot kidnap_after_s later by kidnap_jump_in along the
+  // ring; the run then goes on until the pose is recovered again. -1: no kidnap, the run
+  // ends at the first localized pose.
+  double kidnap_after_s = -1.0;
+  double kidnap_jump_in = 0.0;
+  // Record the sensed sequence and the map edges the camera passed (RunResult::trace).
+  bool trace = false;
+  // Replaces the virtual robot's ring (empty: keep it).
+  std::string ring_id;
+  // Measuring the assembled edges' errors (RunResult::errors) instead of localizing: the
+  // robot travels this far, whatever the localizer says. 0: a Where-am-I run.
+  double measure_ft = 0.0;
+};
+
+// One localized pose and how it compares with the truth.
+struct Recovery {
+  std::string ring_id;
+  int edge = 0;
+  bool forward = false;
+  std::string truth_ring_id;
+  int truth_edge = 0;
+  bool truth_forward = false;
+  bool correct = false;
+  int edges_sensed = 0;      // in the localizer's current sequence
+  double distance_ft = 0.0;  // travelled since the start (or the kidnap)
+  double time_s = 0.0;       // simulated, since the start (or the kidnap)
+};
+
+struct RunResult {
+  std::uint64_t seed = 0;
+  std::string start;  // where the run started, in words
+  std::optional<Recovery> first;
+  bool kidnapped = false;
+  bool lost_detected = false;       // the localizer turned LOST after the kidnap
+  double lost_after_ft = 0.0;       // travelled from the kidnap to LOST
+  std::optional<Recovery> second;   // recovered after the kidnap
+  int frames = 0;
+  int doors_observed = 0;
+  int collisions = 0;
+  double max_offset_in = 0.0;       // beyond 8 ft of corners, after 20 ft
+  double max_heading_deg = 0.0;
+  double sim_s = 0.0;
+  std::string ended;                // why the run ended
+  // With RunOptions::trace: the localizer's sensed sequence when the run ended, and the
+  // edges of the map (as the hallway follower senses it) that the camera's axis passed.
+  std::string sensed_trace;
+  std::string true_trace;
+  // With RunOptions::measure_ft: the assembled edges against the truth, from 20 ft on.
+  EdgeErrorCounts errors;
+};
+
+RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options);
+
+}  // namespace stickrep::whereami
