@@ -226,7 +226,8 @@ json ToJson(const msgs::GroundTruth& m) {
           {"offset_in", m.offset_in()},     {"distance_in", m.distance_in()},
           {"lateral_offset_in", m.lateral_offset_in()},
           {"heading_error_deg", m.heading_error_deg()},
-          {"collisions", m.collisions()}};
+          {"collisions", m.collisions()},
+          {"forward_in_ring", m.forward_in_ring()}};
 }
 
 }  // namespace stickrep::console

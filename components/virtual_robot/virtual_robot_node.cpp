@@ -230,6 +230,7 @@ class VirtualRobotNode : public runtime::ProcessNode {
     g.lateral_offset_in(t.lateral_offset_in);
     g.heading_error_deg(RadToDeg(t.heading_error_rad));
     g.collisions(static_cast<uint32_t>(t.collisions));
+    g.forward_in_ring(t.forward_in_ring);
     if (std::hypot(t.X_WR.x_in - path_.back().first, t.X_WR.y_in - path_.back().second) > 6.0) {
       path_.push_back({t.X_WR.x_in, t.X_WR.y_in});
     }

@@ -42,8 +42,10 @@ constexpr double kSendPeriodS = 0.05;
 // A door is classified in the frames whose optical axis is this close to its centre (3 or
 // 4 frames per door).
 constexpr double kInViewIn = 12.0;
-// The detector sees a double door as two leaves around the meeting stile.
-constexpr double kStileIn = 2.0;
+// The detector sees a double door as two leaves either side of the seam where they meet;
+// their facing jambs are placed an inch apart (world::DoorFeature draws the leaves meeting
+// in the middle; EdgeAssemblerConfig::leaf_gap_in).
+constexpr double kStileIn = 1.0;
 
 
 msgs::DoorClass ToMsg(map::DoorClass c) {

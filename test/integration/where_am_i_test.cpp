@@ -1,28 +1,35 @@
-// The whole Where-am-I run, every process on its own, faster than real time: seeded random
-// starts recover the true pose, and a kidnapped robot is noticed and recovers again.
+// The whole Where-am-I run, every process on its own and faster than real time, on a small
+// map (test/maps/wing1_corridor.yaml, one corridor of the Engineering Building): seeded
+// random starts recover the true pose, and a kidnapped robot is noticed and recovers again.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include "integration/process_fixture.h"
 #include "localizationPubSubTypes.h"
 #include "missionPubSubTypes.h"
 #include "runtime/process.h"
-#include "stickrep/map_io.h"
 #include "systemPubSubTypes.h"
 
 namespace stickrep::test {
 namespace {
 
-// The shipped virtual-robot config with some keys replaced.
-std::string VirtualRobotConfig(const std::map<std::string, std::string>& overrides) {
-  std::ifstream in(ConfigPath("virtual_robot.yaml"));
+constexpr const char* kSmallMap = STICKREP_SOURCE_DIR "/test/maps/wing1_corridor.yaml";
+constexpr int kSmallMapEdges = 118;
+// Simulated seconds per wall second. The runs take 20-60 s simulated.
+constexpr const char* kRealTimeFactor = "5";
+
+// A shipped config file with some keys of its section replaced.
+std::string ConfigWith(const std::string& file, const std::map<std::string, std::string>& keys) {
+  std::ifstream in(ConfigPath(file));
   std::ostringstream out;
   std::string line;
   while (std::getline(in, line)) {
-    for (const auto& [key, value] : overrides) {
+    for (const auto& [key, value] : keys) {
       if (line.rfind("  " + key + ":", 0) == 0) line = "  " + key + ": " + value;
     }
     out << line << "\n";
@@ -30,52 +37,73 @@ std::string VirtualRobotConfig(const std::map<std::string, std::string>& overrid
   return out.str();
 }
 
+// The shipped system.yaml on the small map (paths made absolute: it is written elsewhere).
+std::string SmallMapSystem(const std::string& name) {
+  return WriteTempFile(name, ConfigWith("system.yaml", {{"qos_file", ConfigPath("qos.yaml")},
+                                                        {"robot_file", ConfigPath("robot.yaml")},
+                                                        {"map_file", kSmallMap}}));
+}
+
 class WhereAmITest : public ProcessFixture {
  protected:
   explicit WhereAmITest(int domain = 25) : ProcessFixture(domain) {}
 
-  void StartStack(const std::string& virtual_robot_config) {
-    Start("stickrep-virtual-robot", {"--config", virtual_robot_config});
+  void StartStack(const std::string& name, const std::map<std::string, std::string>& robot) {
+    const std::string system = SmallMapSystem(name + "_system.yaml");
+    std::map<std::string, std::string> keys = {{"real_time_factor", kRealTimeFactor},
+                                               {"summary_png", "\"\""}};
+    keys.insert(robot.begin(), robot.end());
+    Start("stickrep-virtual-robot",
+          {"--system", system, "--config",
+           WriteTempFile(name + "_vr.yaml", ConfigWith("virtual_robot.yaml", keys))});
     for (const char* exe : {"stickrep-sonar", "stickrep-camera", "stickrep-locomotion",
                             "stickrep-landmark", "stickrep-localizer", "stickrep-executive"}) {
-      Start(exe);
+      Start(exe, {"--system", system});
     }
   }
 
-  // Whether a localized pose names the true place: same ring, the true edge or its
-  // neighbour (the robot may be crossing a node as the pose is published).
-  static bool Matches(const msgs::PoseHypothesis& best, const msgs::GroundTruth& truth) {
+  // Whether a localized pose names the true place: same ring and direction of travel, the
+  // true edge or its neighbour (the robot may be crossing a node as the pose is published).
+  static bool Matches(const msgs::PoseHypothesis& best, const msgs::GroundTruth& truth,
+                      bool truth_forward) {
     const int de = std::abs(static_cast<int>(best.edge_index()) -
                             static_cast<int>(truth.edge_index()));
-    return best.ring_id() == truth.ring_id() && de <= 1;
+    return best.ring_id() == truth.ring_id() && best.forward() == truth_forward &&
+           (de <= 1 || de == kSmallMapEdges - 1);
   }
 };
 
 TEST_F(WhereAmITest, SeededRandomStartsRecoverTheTruePose) {
-  for (const char* seed : {"11", "22", "33"}) {
+  for (const char* seed : {"1", "2", "3"}) {
     SCOPED_TRACE(std::string("seed ") + seed);
-    msgs::GroundTruth truth;
-    bool have_truth = false;
+    std::optional<msgs::GroundTruth> truth;
     std::optional<msgs::LocalizationPose> localized;
+    std::vector<std::string> mission;
     runtime::Reader<msgs::GroundTruthPubSubType> truths(
-        participant(), executor(), "sim/ground_truth", [&](const msgs::GroundTruth& g) {
-          truth = g;
-          have_truth = true;
-        });
+        participant(), executor(), "sim/ground_truth",
+        [&](const msgs::GroundTruth& g) { truth = g; });
     runtime::Reader<msgs::LocalizationPosePubSubType> poses(
         participant(), executor(), "localization/pose", [&](const msgs::LocalizationPose& p) {
           if (p.status() == msgs::LOCALIZATION_LOCALIZED && !localized) localized = p;
         });
-    StartStack(WriteTempFile(std::string("vr_") + seed + ".yaml",
-                             VirtualRobotConfig({{"seed", seed}, {"real_time_factor", "4"}})));
-    ASSERT_TRUE(SpinUntil([&] { return localized.has_value() && have_truth; }, 180.0))
+    runtime::Reader<msgs::MissionStatusPubSubType> status(
+        participant(), executor(), "mission/status", [&](const msgs::MissionStatus& s) {
+          if (mission.empty() || mission.back() != s.message()) mission.push_back(s.message());
+        });
+    StartStack(std::string("seed") + seed, {{"seed", seed}});
+    ASSERT_TRUE(SpinUntil([&] { return localized.has_value() && truth.has_value(); }, 150.0))
         << Outputs();
-    // Let the newest ground truth arrive (it is published at 20 Hz simulated).
-    SpinUntil([] { return false; }, 0.3);
-    EXPECT_TRUE(Matches(localized->best(), truth))
+    // The truth of the moment the pose was published (ground truth comes at 20 Hz simulated).
+    const msgs::GroundTruth at_pose = *truth;
+    EXPECT_TRUE(Matches(localized->best(), at_pose, at_pose.forward_in_ring()))
         << "localized on ring " << localized->best().ring_id() << " edge "
-        << localized->best().edge_index() << ", truth ring " << truth.ring_id() << " edge "
-        << truth.edge_index();
+        << localized->best().edge_index() << (localized->best().forward() ? " fwd" : " back")
+        << ", truth ring " << at_pose.ring_id() << " edge " << at_pose.edge_index()
+        << (at_pose.forward_in_ring() ? " fwd" : " back") << "\n"
+        << Outputs();
+    // The mission aligned and centred before it travelled to recover the pose.
+    EXPECT_THAT(mission, ::testing::Contains(::testing::HasSubstr("aligning")));
+    EXPECT_EQ(at_pose.collisions(), 0u);
     StopAllAndExpectCleanExit();
   }
 }
@@ -86,10 +114,10 @@ class KidnapTest : public WhereAmITest {
 };
 
 TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
-  msgs::GroundTruth truth;
-  int localized_count = 0;
+  std::optional<msgs::GroundTruth> truth;
   bool lost = false;
   std::optional<msgs::LocalizationPose> first, second;
+  std::optional<msgs::GroundTruth> truth_at_second;
   std::string last_status;
   runtime::Reader<msgs::GroundTruthPubSubType> truths(
       participant(), executor(), "sim/ground_truth", [&](const msgs::GroundTruth& g) { truth = g; });
@@ -98,34 +126,44 @@ TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
         if (p.status() == msgs::LOCALIZATION_LOST) lost = true;
         if (p.status() != msgs::LOCALIZATION_LOCALIZED) return;
         if (!first) first = p;
-        if (lost && !second) second = p;
+        if (lost && !second) {
+          second = p;
+          truth_at_second = truth;
+        }
       });
   runtime::Reader<msgs::MissionStatusPubSubType> status(
       participant(), executor(), "mission/status",
       [&](const msgs::MissionStatus& s) { last_status = s.message(); });
   runtime::Writer<msgs::MissionGoalPubSubType> goals(participant(), "mission/goal");
-  StartStack(WriteTempFile("vr_kidnap.yaml",
-                           VirtualRobotConfig({{"seed", "44"},
-                                               {"real_time_factor", "4"},
-                                               {"kidnap_after_localized_s", "2"},
-                                               {"kidnap_jump_in", "2500"}})));
-  ASSERT_TRUE(SpinUntil([&] { return first.has_value(); }, 180.0)) << Outputs();
-  // A goal far along the ring keeps the robot travelling, so the kidnap shows.
+  StartStack("kidnap", {{"seed", "4"},
+                        {"kidnap_after_localized_s", "4"},
+                        {"kidnap_jump_in", "2500"}});
+  ASSERT_TRUE(SpinUntil([&] { return first.has_value(); }, 150.0)) << Outputs();
+  // A goal half the ring ahead keeps the robot travelling, so the kidnap shows.
+  const int ahead = first->best().forward()
+                        ? static_cast<int>(first->best().edge_index()) + kSmallMapEdges / 2
+                        : static_cast<int>(first->best().edge_index()) - kSmallMapEdges / 2 +
+                              kSmallMapEdges;
   msgs::MissionGoal goal;
   goal.goal_id("far");
-  const map::Map map =
-      map::LoadMap(std::string(STICKREP_SOURCE_DIR) + "/maps/engineering_building_3f.yaml");
-  const int ring_edges = map.ring(map.FindRing(first->best().ring_id())).EdgeCount();
-  goal.target(first->best().ring_id() + "/" +
-              std::to_string((first->best().edge_index() + ring_edges / 2) % ring_edges));
-  goals.Publish(goal, runtime::WallClockNowNs());
+  goal.target(first->best().ring_id() + "/" + std::to_string(ahead % kSmallMapEdges));
+  ASSERT_TRUE(SpinUntil(
+      [&] {
+        goals.Publish(goal, runtime::WallClockNowNs());
+        SpinUntil([&] { return last_status.find("goal 'far'") != std::string::npos; }, 0.5);
+        return last_status.find("goal 'far'") != std::string::npos;
+      },
+      20.0))
+      << last_status;
+  ASSERT_EQ(last_status.find("refused"), std::string::npos) << last_status;
   ASSERT_TRUE(SpinUntil([&] { return lost; }, 120.0)) << last_status << "\n" << Outputs();
-  ASSERT_TRUE(SpinUntil([&] { return second.has_value(); }, 180.0)) << Outputs();
-  SpinUntil([] { return false; }, 0.3);
-  EXPECT_TRUE(Matches(second->best(), truth))
+  ASSERT_TRUE(SpinUntil([&] { return second.has_value(); }, 150.0)) << Outputs();
+  ASSERT_TRUE(truth_at_second.has_value());
+  EXPECT_TRUE(Matches(second->best(), *truth_at_second, truth_at_second->forward_in_ring()))
       << "recovered on ring " << second->best().ring_id() << " edge "
-      << second->best().edge_index() << ", truth ring " << truth.ring_id() << " edge "
-      << truth.edge_index();
+      << second->best().edge_index() << ", truth ring " << truth_at_second->ring_id() << " edge "
+      << truth_at_second->edge_index() << "\n"
+      << Outputs();
   StopAllAndExpectCleanExit();
 }
 
