@@ -66,8 +66,8 @@ class WhereAmITest : public ProcessFixture {
   // true edge or its neighbour (the robot may be crossing a node as the pose is published).
   static bool Matches(const msgs::PoseHypothesis& best, const msgs::GroundTruth& truth,
                       bool truth_forward) {
-    const int de = std::abs(static_cast<int>(best.edge_index()) -
-                            static_cast<int>(truth.edge_index()));
+    const int de =
+        std::abs(static_cast<int>(best.edge_index()) - static_cast<int>(truth.edge_index()));
     return best.ring_id() == truth.ring_id() && best.forward() == truth_forward &&
            (de <= 1 || de == kSmallMapEdges - 1);
   }
@@ -120,7 +120,8 @@ TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
   std::optional<msgs::GroundTruth> truth_at_second;
   std::string last_status;
   runtime::Reader<msgs::GroundTruthPubSubType> truths(
-      participant(), executor(), "sim/ground_truth", [&](const msgs::GroundTruth& g) { truth = g; });
+      participant(), executor(), "sim/ground_truth",
+      [&](const msgs::GroundTruth& g) { truth = g; });
   runtime::Reader<msgs::LocalizationPosePubSubType> poses(
       participant(), executor(), "localization/pose", [&](const msgs::LocalizationPose& p) {
         if (p.status() == msgs::LOCALIZATION_LOST) lost = true;
@@ -135,15 +136,14 @@ TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
       participant(), executor(), "mission/status",
       [&](const msgs::MissionStatus& s) { last_status = s.message(); });
   runtime::Writer<msgs::MissionGoalPubSubType> goals(participant(), "mission/goal");
-  StartStack("kidnap", {{"seed", "4"},
-                        {"kidnap_after_localized_s", "4"},
-                        {"kidnap_jump_in", "2500"}});
+  StartStack("kidnap",
+             {{"seed", "4"}, {"kidnap_after_localized_s", "4"}, {"kidnap_jump_in", "2500"}});
   ASSERT_TRUE(SpinUntil([&] { return first.has_value(); }, 150.0)) << Outputs();
   // A goal half the ring ahead keeps the robot travelling, so the kidnap shows.
-  const int ahead = first->best().forward()
-                        ? static_cast<int>(first->best().edge_index()) + kSmallMapEdges / 2
-                        : static_cast<int>(first->best().edge_index()) - kSmallMapEdges / 2 +
-                              kSmallMapEdges;
+  const int ahead =
+      first->best().forward()
+          ? static_cast<int>(first->best().edge_index()) + kSmallMapEdges / 2
+          : static_cast<int>(first->best().edge_index()) - kSmallMapEdges / 2 + kSmallMapEdges;
   msgs::MissionGoal goal;
   goal.goal_id("far");
   goal.target(first->best().ring_id() + "/" + std::to_string(ahead % kSmallMapEdges));
@@ -160,9 +160,9 @@ TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
   ASSERT_TRUE(SpinUntil([&] { return second.has_value(); }, 150.0)) << Outputs();
   ASSERT_TRUE(truth_at_second.has_value());
   EXPECT_TRUE(Matches(second->best(), *truth_at_second, truth_at_second->forward_in_ring()))
-      << "recovered on ring " << second->best().ring_id() << " edge "
-      << second->best().edge_index() << ", truth ring " << truth_at_second->ring_id() << " edge "
-      << truth_at_second->edge_index() << "\n"
+      << "recovered on ring " << second->best().ring_id() << " edge " << second->best().edge_index()
+      << ", truth ring " << truth_at_second->ring_id() << " edge " << truth_at_second->edge_index()
+      << "\n"
       << Outputs();
   StopAllAndExpectCleanExit();
 }
