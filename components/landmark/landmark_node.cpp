@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -11,6 +12,7 @@
 #include "landmark/odometer_history.h"
 #include "perceptionPubSubTypes.h"
 #include "runtime/endpoint.h"
+#include "runtime/latency.h"
 #include "sensorsPubSubTypes.h"
 
 namespace stickrep::landmark {
@@ -52,8 +54,9 @@ class LandmarkNode : public runtime::ProcessNode {
   }
 
   std::string Summary() const override {
-    return fmt::format("{} frames processed, {} doors observed, {} frames without a door",
-                       frames_, doors_, no_door_);
+    return fmt::format("{} frames processed, {} doors observed, {} frames without a door, {} "
+                       "frames of the camera never seen; camera frame to observation {}",
+                       frames_, doors_, no_door_, frames_missed_, latency_.Summary());
   }
 
  private:
@@ -87,6 +90,11 @@ class LandmarkNode : public runtime::ProcessNode {
 
   void OnImage(const msgs::Image& m) {
     ctx_->counters.CountIn();
+    // Frames the camera wrote that never arrived: superseded in the keep-last-1 stream while
+    // this process was busy (or lost on the way).
+    const uint32_t seq = m.header().sequence_number();
+    if (last_image_seq_ > 0 && seq > last_image_seq_ + 1) frames_missed_ += seq - last_image_seq_ - 1;
+    last_image_seq_ = std::max(last_image_seq_, seq);
     if (last_scan_ns_ == 0 || std::llabs(m.header().stamp_ns() - last_scan_ns_) > max_scan_age_ns_) {
       ctx_->counters.Drop("robot/camera/image", "no sonar scan near the frame in time");
       return;
@@ -128,6 +136,8 @@ class LandmarkNode : public runtime::ProcessNode {
     if (writer_->Publish(msg, m.header().stamp_ns())) {
       ctx_->counters.CountOut();
       doors_++;
+      // Wall clock from the camera process writing the frame to the observation written.
+      latency_.Add((ctx_->now_ns() - images_->source_timestamp_ns()) * 1e-6);
     }
   }
 
@@ -139,6 +149,9 @@ class LandmarkNode : public runtime::ProcessNode {
   int64_t last_scan_ns_ = 0;
   OdometerHistory odometer_;
   uint64_t frames_ = 0, doors_ = 0, no_door_ = 0;
+  runtime::LatencyLog latency_;
+  uint32_t last_image_seq_ = 0;
+  uint64_t frames_missed_ = 0;
   std::unique_ptr<runtime::Writer<msgs::LandmarkObservationPubSubType>> writer_;
   std::unique_ptr<runtime::Reader<msgs::SonarScanPubSubType>> scans_;
   std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;

@@ -12,6 +12,7 @@
 #include "localizer/localizer_config.h"
 #include "perceptionPubSubTypes.h"
 #include "runtime/endpoint.h"
+#include "runtime/latency.h"
 #include "sensing/robot_config.h"
 #include "sensorsPubSubTypes.h"
 #include "stickrep/map_io.h"
@@ -112,18 +113,12 @@ class LocalizerNode : public runtime::ProcessNode {
 
   std::string Summary() const override {
     const PoseEstimate& e = localizer_->estimate();
-    std::string latency;
-    if (!latency_ms_.empty()) {
-      std::vector<double> v = latency_ms_;
-      std::sort(v.begin(), v.end());
-      const auto at = [&](double q) { return v[static_cast<size_t>(q * (v.size() - 1))]; };
-      latency = fmt::format("; frame-to-localizer latency median {:.1f} ms, p99 {:.1f} ms",
-                            at(0.5), at(0.99));
-    }
     return fmt::format("{} landmarks used, {} edges sensed, {} restarts, {} losses; status {} "
-                       "with {} candidates{}",
+                       "with {} candidates; landmark observation to localizer {}; odometry to "
+                       "pose update {}",
                        landmarks_used_, localizer_->edges_total(), localizer_->restarts(),
-                       localizer_->losses(), ToString(e.status), e.candidates, latency);
+                       localizer_->losses(), ToString(e.status), e.candidates,
+                       observation_latency_.Summary(), pose_latency_.Summary());
   }
 
  private:
@@ -142,10 +137,9 @@ class LocalizerNode : public runtime::ProcessNode {
     localizer_->AddSighting(
         {*door, o.width_in(), o.confidence(), o.odometry_distance_in() + o.center_offset_in()});
     landmarks_used_++;
-    // Frame capture to here, across the camera, landmark and localizer processes. Frame
-    // stamps are simulated time on the virtual robot, so this is wall latency only at a
-    // real-time factor of 1.
-    latency_ms_.push_back((ctx_->now_ns() - o.image_stamp_ns()) * 1e-6);
+    // Wall clock from the landmark process writing the observation to here (the header
+    // carries the frame's time, simulated on the virtual robot).
+    observation_latency_.Add((ctx_->now_ns() - landmarks_->source_timestamp_ns()) * 1e-6);
   }
 
   // The coaxial sensor looks along the optical axis at the camera's wall: its range is how
@@ -173,8 +167,11 @@ class LocalizerNode : public runtime::ProcessNode {
     }
     if (localizer_->Advance(o.distance_in(), o.pose().heading_rad())) {
       const PoseEstimate& e = localizer_->estimate();
-      ctx_->log->info("{}: {} ({} edges sensed)", ToString(e.status), e.message, e.edges_sensed);
       PublishPose();
+      // Wall clock from locomotion writing the odometry that completed an edge to the pose
+      // written: transport, matching, publication.
+      pose_latency_.Add((ctx_->now_ns() - odometry_->source_timestamp_ns()) * 1e-6);
+      ctx_->log->info("{}: {} ({} edges sensed)", ToString(e.status), e.message, e.edges_sensed);
     }
   }
 
@@ -211,7 +208,7 @@ class LocalizerNode : public runtime::ProcessNode {
   double head_radius_in_ = 0.0;
   std::unique_ptr<Localizer> localizer_;
   uint64_t landmarks_used_ = 0;
-  std::vector<double> latency_ms_;
+  runtime::LatencyLog observation_latency_, pose_latency_;
   std::unique_ptr<runtime::Writer<msgs::LocalizationPosePubSubType>> pose_;
   std::unique_ptr<runtime::Writer<msgs::PoseHypothesesPubSubType>> hypotheses_;
   std::unique_ptr<runtime::Writer<msgs::StickRepMapPubSubType>> map_writer_;

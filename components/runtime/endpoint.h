@@ -129,6 +129,7 @@ class Reader : public Drainable {
            eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       if (info.valid_data) {
         counters_.samples++;
+        source_timestamp_ns_ = info.source_timestamp.to_ns();
         on_sample_(sample);
       } else if (on_instance_gone_ &&
                  info.instance_state != eprosima::fastdds::dds::ALIVE_INSTANCE_STATE) {
@@ -143,6 +144,9 @@ class Reader : public Drainable {
 
   const std::string& topic() const { return topic_; }
   const EndpointCounters& counters() const { return counters_; }
+  // Wall-clock time (ns) the writer wrote the sample being delivered: valid inside the
+  // sample callback, whatever time the sample's header carries (simulated time).
+  int64_t source_timestamp_ns() const { return source_timestamp_ns_; }
   bool WaitForMatched(int writers, double timeout_s) const {
     return WaitFor([&] { return counters_.matched.load() >= writers; }, timeout_s);
   }
@@ -183,6 +187,7 @@ class Reader : public Drainable {
   std::function<void(int)> on_liveliness_;
   std::function<void(const Sample&)> on_instance_gone_;
   EndpointCounters counters_;
+  int64_t source_timestamp_ns_ = 0;
   std::atomic<bool> deadline_pending_{false};
   std::atomic<bool> liveliness_pending_{false};
   Listener listener_;

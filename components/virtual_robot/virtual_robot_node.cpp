@@ -88,6 +88,8 @@ class VirtualRobotNode : public runtime::ProcessNode {
         ctx.participant, ctx.executor, "localization/pose",
         [this](const msgs::LocalizationPose& p) { OnPose(p); });
     // Rates are in simulated time: faster than real time, every timer runs rtf times as often.
+    sim_period_s_ = 1.0 / config.sim_rate_hz;
+    camera_rate_hz_ = config.camera_rate_hz;
     ctx.executor.AddTimer(1.0 / (config.sim_rate_hz * rtf_), [this] { StepSim(); });
     ctx.executor.AddTimer(1.0 / (config.encoder_rate_hz * rtf_), [this] { PublishEncoders(); });
     ctx.executor.AddTimer(1.0 / (config.sonar_rate_hz * rtf_), [this] { PublishSonar(); });
@@ -122,11 +124,16 @@ class VirtualRobotNode : public runtime::ProcessNode {
     const SimTruth t = sim_->Truth();
     std::string checks;
     for (const std::string& c : pose_checks_) checks += "; " + c;
+    // Keeping up: the frames due in the simulated time run, and the longest simulation step
+    // (the timer fires late when the machine cannot keep up, and the step grows).
+    const double sim_s = start_wall_ns_ > 0 ? (SimNowNs() - start_wall_ns_) * 1e-9 : 0.0;
     return fmt::format(
-        "{}; {} frames, {} sonar scans served; travelled {:.1f} in, now on edge {} of ring '{}'; "
-        "{} collisions; after 20 ft, beyond 8 ft of corners: max |offset| {:.1f} in, max "
-        "|heading error| {:.1f} deg{}",
-        start_check_, frames_, scans_, t.distance_in, t.edge_index, sim_->ring_id(), t.collisions,
+        "{}; {} frames ({:.0f} due), {} sonar scans served; {:.1f} s simulated at {:g}x real "
+        "time, longest step {:.0f} ms (nominal {:.0f}); travelled {:.1f} in, now on edge {} of "
+        "ring '{}'; {} collisions; after 20 ft, beyond 8 ft of corners: max |offset| {:.1f} in, "
+        "max |heading error| {:.1f} deg{}",
+        start_check_, frames_, sim_s * camera_rate_hz_, scans_, sim_s, rtf_, max_step_s_ * 1e3,
+        sim_period_s_ * 1e3, t.distance_in, t.edge_index, sim_->ring_id(), t.collisions,
         max_offset_in_, max_heading_deg_, checks.empty() ? "; no pose recovered" : checks);
   }
 
@@ -195,7 +202,9 @@ class VirtualRobotNode : public runtime::ProcessNode {
     const int64_t now = ctx_->now_ns();
     // The base's watchdog: no set-point for a while means stop.
     if (now - last_wheels_ns_ > wheel_timeout_s_ * 1e9) left_ftps_ = right_ftps_ = 0.0;
-    sim_->Step((now - last_step_ns_) * 1e-9 * rtf_, left_ftps_, right_ftps_);
+    const double step_s = (now - last_step_ns_) * 1e-9 * rtf_;
+    sim_->Step(step_s, left_ftps_, right_ftps_);
+    max_step_s_ = std::max(max_step_s_, step_s);
     last_step_ns_ = now;
     const SimTruth t = sim_->Truth();
     if (t.collisions > collisions_) {
@@ -267,6 +276,7 @@ class VirtualRobotNode : public runtime::ProcessNode {
   double left_ftps_ = 0.0, right_ftps_ = 0.0;
   int64_t last_wheels_ns_ = 0, last_step_ns_ = 0;
   uint64_t frames_ = 0, scans_ = 0;
+  double max_step_s_ = 0.0, sim_period_s_ = 0.02, camera_rate_hz_ = 5.0;
   int collisions_ = 0;
   double max_offset_in_ = 0.0, max_heading_deg_ = 0.0;
   std::unique_ptr<map::Map> map_;
