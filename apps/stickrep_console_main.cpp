@@ -11,7 +11,7 @@
 
 int main(int argc, char** argv) {
   using stickrep::console::ConsoleOptions;
-  CLI::App app{"StickRep remote console: list the topics of a domain, echo a topic"};
+  CLI::App app{"StickRep remote console: list the topics of a domain, echo a topic, send a goal"};
   ConsoleOptions o;
   o.system_file = stickrep::runtime::DefaultConfigDir() + "/system.yaml";
   app.add_option("--system", o.system_file, "deployment settings (domain, QoS file)");
@@ -27,6 +27,13 @@ int main(int argc, char** argv) {
   echo->add_option("--count", o.count, "stop after this many samples")->check(CLI::NonNegativeNumber);
   echo->add_option("--timeout", o.timeout_s, "give up after this many seconds")
       ->check(CLI::NonNegativeNumber);
+  CLI::App* goal = app.add_subcommand(
+      "goal", "send a goal on mission/goal and print the executive's answer");
+  std::string target, goal_id = "console";
+  goal->add_option("target", target, "RING/EDGE, RING/node/N or pattern:NAME")->required();
+  goal->add_option("--id", goal_id, "goal id (default 'console')");
+  goal->add_option("--timeout", o.timeout_s, "give up after this many seconds (default 10)")
+      ->check(CLI::NonNegativeNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -35,6 +42,7 @@ int main(int argc, char** argv) {
   stickrep::runtime::InstallSignalHandlers();
   try {
     if (*list) return stickrep::console::ListTopics(o, std::cout);
+    if (*goal) return stickrep::console::SendGoal(o, goal_id, target, std::cout);
     return stickrep::console::EchoTopic(o, topic, std::cout);
   } catch (const stickrep::InputError& e) {
     fmt::print(stderr, "stickrep-console: {}\n", e.what());

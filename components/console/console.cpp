@@ -6,10 +6,12 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <ostream>
 
 #include "common/input_error.h"
 #include "console/message_json.h"
+#include "missionPubSubTypes.h"
 #include "runtime/endpoint.h"
 #include "runtime/process.h"
 #include "runtime/system_config.h"
@@ -155,6 +157,40 @@ int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& o
   }
   reader.reset();
   return (o.count > 0 && printed < o.count) ? 1 : 0;
+}
+
+int SendGoal(const ConsoleOptions& o, const std::string& goal_id, const std::string& target,
+             std::ostream& out) {
+  Session s = Join(o);
+  runtime::Executor ex;
+  std::optional<msgs::MissionStatus> reply;
+  const std::string named = "goal '" + goal_id + "'";
+  runtime::Reader<msgs::MissionStatusPubSubType> status(
+      *s.participant, ex, "mission/status", [&](const msgs::MissionStatus& m) {
+        if (m.message().rfind(named, 0) == 0) reply = m;
+      });
+  runtime::Writer<msgs::MissionGoalPubSubType> goals(*s.participant, "mission/goal");
+  msgs::MissionGoal g;
+  g.goal_id(goal_id);
+  g.target(target);
+  const auto until = runtime::Executor::Clock::now() +
+                     std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                         std::chrono::duration<double>(o.timeout_s > 0.0 ? o.timeout_s : 10.0));
+  // Re-sent every half second until answered: the executive may not be discovered yet.
+  auto next_send = runtime::Executor::Clock::now();
+  while (!reply && runtime::KeepRunning().load() && runtime::Executor::Clock::now() < until) {
+    if (runtime::Executor::Clock::now() >= next_send && goals.counters().matched.load() > 0) {
+      goals.Publish(g, runtime::WallClockNowNs());
+      next_send = runtime::Executor::Clock::now() + std::chrono::milliseconds(500);
+    }
+    ex.SpinOnce(std::chrono::milliseconds(50));
+  }
+  if (!reply) {
+    fmt::print(out, "{}: no answer from an executive\n", named);
+    return 1;
+  }
+  fmt::print(out, "{}\n", ToJson(*reply).dump());
+  return reply->message().find("refused") == std::string::npos ? 0 : 1;
 }
 
 }  // namespace stickrep::console

@@ -25,6 +25,12 @@ int ListTopics(const ConsoleOptions& options, std::ostream& out);
 // `echo TOPIC`: one JSON line per sample until the count, the timeout or a signal.
 int EchoTopic(const ConsoleOptions& options, const std::string& topic, std::ostream& out);
 
+// `goal TARGET`: sends a goal (a door or node of the map, executive/route.h) on
+// mission/goal and waits up to timeout_s (default 10 s) for the executive to name it on
+// mission/status; prints that status. 0 when the goal was taken, 1 when refused or unanswered.
+int SendGoal(const ConsoleOptions& options, const std::string& goal_id, const std::string& target,
+             std::ostream& out);
+
 // The table `list` prints, from summaries (kept apart from DDS for testing).
 void PrintTopicTable(const std::vector<runtime::TopicSummary>& topics, std::ostream& out);
 

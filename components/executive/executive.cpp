@@ -15,10 +15,12 @@ void Executive::OnLocalized(const MapPose& pose, const std::string& where) {
   // corners, where the base turns in place.
   if (mission_.state() == MissionState::kExecutingGoal) {
     const RouteResult route = planner_.Plan(pose, goal_target_);
-    if (route) {
-      const double remaining = route.route->initial_travel_sign >= 0 ? route.route->distance_in
-                                                                     : -route.route->distance_in;
-      mission_.UpdateGoal(remaining, odometer_in_);
+    if (route && !route.route->legs.empty()) {
+      // Still ahead along the way the robot is being driven, or behind it (overshot).
+      const bool ahead = route.route->initial_travel_sign == 0 ||
+                         route.route->legs.front().dir == goal_ring_dir_;
+      mission_.UpdateGoal(ahead ? route.route->distance_in : -route.route->distance_in,
+                          odometer_in_);
     }
   }
 }
@@ -45,6 +47,7 @@ std::optional<std::string> Executive::OnGoal(const std::string& goal_id,
   // Keep going means the direction the base travelled while localizing.
   const int sign = route.route->initial_travel_sign >= 0 ? travel_direction_ : -travel_direction_;
   goal_target_ = target;
+  goal_ring_dir_ = route.route->legs.empty() ? pose_->dir : route.route->legs.front().dir;
   mission_.StartGoal(
       GoalPlan{goal_id, planner_.Describe(*route.route), sign, route.route->distance_in},
       odometer_in_);

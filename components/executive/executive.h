@@ -36,6 +36,7 @@ class Executive {
   int travel_direction_ = +1;
   std::optional<MapPose> pose_;
   std::string goal_target_;
+  int goal_ring_dir_ = +1;  // the goal is driven to in this ring direction (+1: ring order)
   double odometer_in_ = 0.0;
 };
 

@@ -60,6 +60,23 @@ TEST_F(ExecutiveTest, GoalOnTheRingIsDrivenToAndEndsThere) {
   EXPECT_FALSE(executive_.mission().Motion().move);
 }
 
+TEST_F(ExecutiveTest, GoalBehindIsDrivenToInReverseAndNotTakenAsPassed) {
+  Localize();  // box edge 0, travelling in ring order
+  executive_.OnOdometer(500.0);
+  // The middle of the last edge (5, 100 in) is 60 in behind, 340 in ahead: reached
+  // against ring order.
+  ASSERT_EQ(executive_.OnGoal("g", "box/5"), std::nullopt);
+  EXPECT_EQ(executive_.mission().state(), MissionState::kExecutingGoal);
+  EXPECT_LT(executive_.mission().Motion().linear_speed_ftps, 0.0);
+  // A pose update before the robot has turned round still says "in ring order": the goal
+  // is behind that way, but it is being driven to the other way, and is not reached.
+  executive_.OnLocalized(MapPose{map_.FindRing("box"), 0, +1, 10.0}, "box edge 0");
+  EXPECT_EQ(executive_.mission().state(), MissionState::kExecutingGoal);
+  // Now travelling against ring order, inside edge 5 past its middle: reached.
+  executive_.OnLocalized(MapPose{map_.FindRing("box"), 5, -1, 60.0}, "box edge 5");
+  EXPECT_EQ(executive_.mission().state(), MissionState::kGoalReached);
+}
+
 TEST_F(ExecutiveTest, LostPoseDropsTheGoalAndRecovers) {
   Localize();
   ASSERT_EQ(executive_.OnGoal("g", "box/1"), std::nullopt);

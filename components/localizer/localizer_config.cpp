@@ -30,6 +30,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.view.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
   s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
+  s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);
   c.Finish();
   return s;
 }
@@ -43,6 +44,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     const map::MatchIndex index(matched);
     config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise, study.bayes};
     config.bayes.settings.threshold = settings.bayes_threshold;
+    config.bayes.settings.outlier = settings.bayes_outlier;
   }
   return config;
 }

@@ -20,6 +20,9 @@ struct LocalizerSettings {
   double publish_rate_hz = 2.0;
   // The posterior the Bayes matcher needs to declare a pose (replaces the study's).
   double bayes_threshold = 0.995;
+  // The probability that a sensed edge is one the error model cannot explain (replaces the
+  // study's).
+  double bayes_outlier = 1e-4;
 };
 
 // Reads the `localizer` section; every key required, unknown keys rejected (InputError with
