@@ -52,9 +52,20 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
   }
   if (direction_ == 0 && std::abs(odometer_in - start_in_) > 1e-6) {
     direction_ = odometer_in > start_in_ ? +1 : -1;
+    farthest_in_ = odometer_in;
   }
   odometer_in_ = odometer_in;
   if (direction_ == 0) return out;
+  if (direction_ * (odometer_in - farthest_in_) > 0.0) farthest_in_ = odometer_in;
+  if (direction_ * (farthest_in_ - odometer_in) > config_.reverse_after_in) {
+    // Travelling the other way now: what was being assembled belongs to the old direction.
+    Restart();
+    heading_ref_rad_.reset();
+    direction_ = -direction_;
+    farthest_in_ = odometer_in;
+    reversed_ = true;
+    return out;
+  }
   out.swap(placed_);
   if (corner_) {
     if (!corner_->settled) {

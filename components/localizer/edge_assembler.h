@@ -58,6 +58,9 @@ struct EdgeAssemblerConfig {
   // Without a wall range after the turn within this much travel, the range before the
   // turn stands in for it (a symmetric corner).
   double range_wait_in = 24.0;
+  // The travel direction has reversed once the odometer is this far back from the farthest
+  // point reached (more than a wheel's slip or the settling after a stop).
+  double reverse_after_in = 12.0;
 };
 
 // Assembles per-frame door sightings and the odometer into the sensed sequence of StickRep
@@ -88,6 +91,14 @@ class EdgeAssembler {
   // Forgets everything: the next edges start a new sequence (deterministic recovery, §6.7).
   // The robot is then inside a wall or door again, so the next wall is a lower bound.
   void Restart();
+  // Whether the travel direction reversed since the last call (a goal behind, a hallway
+  // end): the odometer ran reverse_after_in back from the farthest point reached. The
+  // assembler has then restarted, travelling the other way.
+  bool TakeReversal() {
+    const bool r = reversed_;
+    reversed_ = false;
+    return r;
+  }
   int travel_direction() const { return direction_; }
   // Odometer reading at the far end of the last emitted door; empty before the first.
   std::optional<double> last_edge_end_in() const { return last_jamb_in_; }
@@ -137,6 +148,8 @@ class EdgeAssembler {
   bool have_odometer_ = false;
   double start_in_ = 0.0;             // odometer where the current sequence began
   int direction_ = 0;                 // +1 / -1 once the robot has moved
+  double farthest_in_ = 0.0;          // odometer farthest along the travel direction
+  bool reversed_ = false;
   std::optional<double> last_jamb_in_;  // trailing jamb of the last emitted door (or corner)
   std::optional<double> last_door_end_in_;  // trailing jamb of the last emitted door
   std::optional<double> heading_ref_rad_;  // heading along the current stretch of wall

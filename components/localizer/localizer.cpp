@@ -33,6 +33,24 @@ Localizer::Localizer(const map::Map& map, LocalizerConfig config)
 
 bool Localizer::Advance(double odometer_in, double heading_rad) {
   const std::vector<map::SensedEdge> edges = assembler_.Advance(odometer_in, heading_rad);
+  if (assembler_.TakeReversal()) {
+    if (tracker_.status() == TrackStatus::kTracking) {
+      // The same place, travelled the other way: the edge is entered from its other end.
+      TrackedPose p = tracker_.pose();
+      const double metric = map_.ring(p.ring).edges[p.edge].metric_in;
+      p.dir = -p.dir;
+      p.offset_in = std::max(0.0, metric - p.offset_in);
+      tracker_.Start(p, odometer_in, assembler_.travel_direction());
+      estimate_.hypotheses = {MakeHypothesisAt(p.ring, p.edge, p.dir, p.offset_in, 1.0)};
+      estimate_.message = "travel reversed: the pose is kept, travelling the other way";
+      return true;
+    }
+    // Recovering: the sequence so far was sensed the other way round; start a new one.
+    ResetRecovery();
+    restarts_++;
+    Rebuild(odometer_in, "travel reversed: a new sequence");
+    return true;
+  }
   if (tracker_.status() == TrackStatus::kTracking) return Track(odometer_in, edges);
   const bool changed = Recover(odometer_in, edges);
   if (estimate_.status == Status::kLocalized) StartTracking(odometer_in);

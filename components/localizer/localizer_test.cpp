@@ -47,8 +47,9 @@ double DriveUntilLocalized(const map::Map& map, Localizer& loc, double start_in,
   return -1.0;
 }
 
-// Drives forward from odometer `odo_from` to `odo_to` with the optical axis at ring position
-// `axis_from` at the start; returns every status the localizer reported on the way.
+// Drives from odometer `odo_from` to `odo_to` (forward, or backward when odo_to is the
+// smaller) with the optical axis at ring position `axis_from` at the start; the axis moves
+// along the ring as the odometer does. Returns every status the localizer reported.
 std::vector<Status> DriveSegment(const map::Map& map, Localizer& loc, double axis_from,
                                  double odo_from, double odo_to, double view_in = 14.0) {
   const map::Ring& ring = map.ring(0);
@@ -59,7 +60,8 @@ std::vector<Status> DriveSegment(const map::Map& map, Localizer& loc, double axi
     length += e.metric_in;
   }
   std::vector<Status> statuses;
-  for (double odo = odo_from; odo <= odo_to; odo += 6.24) {
+  const double step = odo_to >= odo_from ? 6.24 : -6.24;
+  for (double odo = odo_from; step > 0 ? odo <= odo_to : odo >= odo_to; odo += step) {
     const double axis = axis_from + (odo - odo_from);
     for (std::size_t i = 0; i < ring.edges.size(); ++i) {
       if (!ring.edges[i].IsDoor()) continue;
@@ -72,6 +74,19 @@ std::vector<Status> DriveSegment(const map::Map& map, Localizer& loc, double axi
     if (loc.Advance(odo)) statuses.push_back(loc.estimate().status);
   }
   return statuses;
+}
+
+// The ring edge at ring position `s` (ring order, wrapped).
+int EdgeAtRingPosition(const map::Map& map, double s) {
+  const map::Ring& ring = map.ring(0);
+  double length = 0.0;
+  for (const auto& e : ring.edges) length += e.metric_in;
+  s = std::fmod(std::fmod(s, length) + length, length);
+  for (int i = 0; i < ring.EdgeCount(); ++i) {
+    if (s < ring.edges[i].metric_in) return i;
+    s -= ring.edges[i].metric_in;
+  }
+  return ring.EdgeCount() - 1;
 }
 
 std::vector<map::Edge> DistinctHall() {
@@ -277,6 +292,31 @@ TEST(EdgeAssemblerTest, WallPanelFramedByTheCasingsOfTwoDoorsIsNotADoor) {
   EXPECT_EQ(edges[3].code, map::DoorCode(map::DoorClass::k36));
 }
 
+TEST(EdgeAssemblerTest, ReversedTravelRestartsTheSequenceTheOtherWay) {
+  EdgeAssembler a;
+  auto edges = Drive(a, {{100.0, 36.0, map::DoorClass::k36}}, 200.0);
+  ASSERT_EQ(a.travel_direction(), +1);
+  ASSERT_EQ(edges.size(), 2u);
+  // Backing up from 198 in: over 12 in back the assembler turns round, once.
+  a.Advance(190.0);
+  EXPECT_FALSE(a.TakeReversal());
+  a.Advance(185.0);
+  EXPECT_TRUE(a.TakeReversal());
+  EXPECT_FALSE(a.TakeReversal());
+  EXPECT_EQ(a.travel_direction(), -1);
+  EXPECT_TRUE(a.sequence().empty());
+  // The door is passed again the other way: a partial wall, then the door.
+  std::vector<map::SensedEdge> back;
+  for (double odo = 185.0; odo >= 0.0; odo -= 6.0) {
+    if (std::abs(100.0 - odo) < 12.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.8, 100.0});
+    for (const auto& e : a.Advance(odo)) back.push_back(e);
+  }
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_TRUE(back[0].metric_is_lower_bound);
+  EXPECT_THAT(back[0].metric_in, DoubleNear(185.0 - 118.0, 1e-9));
+  EXPECT_EQ(back[1].code, map::DoorCode(map::DoorClass::k36));
+}
+
 TEST(EdgeAssemblerTest, DoorSeenInOneFrameOnlyIsDroppedAsSpurious) {
   EdgeAssembler a;
   a.Advance(0.0);
@@ -354,6 +394,39 @@ TEST(LocalizerTest, KidnappedRobotIsDetectedAsLostAndRecoversAgain) {
   EXPECT_NE(std::find(after.begin(), after.end(), Status::kLost), after.end());
   EXPECT_EQ(after.back(), Status::kLocalized) << loc.estimate().message << " restarts "
                                              << loc.restarts() << " edges " << loc.edges_total();
+}
+
+TEST(LocalizerTest, PoseIsKeptWhenTheTravelReverses) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map);
+  DriveSegment(map, loc, 10.0, 0.0, 1400.0);
+  ASSERT_EQ(loc.estimate().status, Status::kLocalized);
+  ASSERT_EQ(loc.estimate().hypotheses.front().dir, +1);
+  // Back the way it came (a goal behind it): the pose is kept and turned round, and the
+  // doors met on the way back confirm it.
+  const auto back = DriveSegment(map, loc, 10.0 + 1400.0, 1400.0, 300.0);
+  EXPECT_EQ(std::find(back.begin(), back.end(), Status::kLost), back.end());
+  EXPECT_EQ(loc.losses(), 0u);
+  ASSERT_EQ(loc.estimate().status, Status::kLocalized);
+  const Hypothesis& h = loc.estimate().hypotheses.front();
+  EXPECT_EQ(h.dir, -1);
+  const int truth = EdgeAtRingPosition(map, 10.0 + 300.0);
+  const int n = map.ring(0).EdgeCount();
+  const int de = std::abs(h.edge - truth);
+  EXPECT_TRUE(de <= 1 || de == n - 1) << "pose edge " << h.edge << ", truth " << truth;
+}
+
+TEST(LocalizerTest, KidnappedWhileTravellingBackIsStillNoticed) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map);
+  DriveSegment(map, loc, 10.0, 0.0, 1400.0);
+  DriveSegment(map, loc, 1410.0, 1400.0, 1000.0);
+  ASSERT_EQ(loc.estimate().status, Status::kLocalized);
+  // Teleported half a lap while backing: the anticipated doors stop coming.
+  const auto after = DriveSegment(map, loc, 1010.0 + 463.0, 993.76, -4000.0);
+  EXPECT_GE(loc.losses(), 1u);
+  EXPECT_NE(std::find(after.begin(), after.end(), Status::kLost), after.end());
+  EXPECT_EQ(after.back(), Status::kLocalized) << loc.estimate().message;
 }
 
 TEST(LocalizerTest, SequenceThatFitsNowhereIsDiscardedAndRecoveryStartsAgain) {
