@@ -1,0 +1,63 @@
+#include "locomotion/locomotion_config.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/config_paths.h"
+#include "common/input_error.h"
+
+namespace stickrep::locomotion {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string Shipped() { return ReadYamlText(DefaultConfigDir() + "/locomotion.yaml"); }
+
+LocomotionConfig Load(const std::string& text) {
+  return LoadLocomotionConfig(StrictYaml::LoadString(text, "locomotion.yaml").Child("locomotion"),
+                              sensing::RobotConfig{});
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(LocomotionConfigTest, ShippedFileLoadsWithTheRobotsRing) {
+  const LocomotionConfig c = Load(Shipped());
+  EXPECT_EQ(c.device, "virtual");
+  EXPECT_DOUBLE_EQ(c.behaviour.follower.max_speed_ftps, sensing::RobotConfig{}.base.max_speed_ftps);
+  EXPECT_EQ(c.behaviour.follower.sensor_count, sensing::RobotConfig{}.sonar_ring.count);
+  EXPECT_DOUBLE_EQ(c.behaviour.follower.length_scale_in, 36.0);
+  EXPECT_DOUBLE_EQ(c.behaviour.envelope_offset_in, 12.0);
+}
+
+TEST(LocomotionConfigTest, UnknownHallwayKeyNamesFileLineAndKey) {
+  try {
+    Load(Replace(Shipped(), "    turn_rate_radps:", "    turn_speed: 1\n    turn_rate_radps:"));
+    FAIL() << "accepted an unknown key";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("locomotion.yaml:"));
+    EXPECT_THAT(e.what(), HasSubstr("locomotion.hallway.turn_speed"));
+  }
+}
+
+TEST(LocomotionConfigTest, OutOfRangeValueStatesTheRangeAndUnit) {
+  try {
+    Load(Replace(Shipped(), "stop_distance_in: 24", "stop_distance_in: 2"));
+    FAIL() << "accepted a stop distance inside the sonar's minimum range";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("stop_distance_in"));
+    EXPECT_THAT(e.what(), HasSubstr("in"));
+  }
+}
+
+TEST(LocomotionConfigTest, SerialDeviceIsRefusedAsNotBuilt) {
+  EXPECT_THROW(Load(Replace(Shipped(), "device: virtual", "device: serial")), InputError);
+}
+
+}  // namespace
+}  // namespace stickrep::locomotion
