@@ -31,6 +31,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
   s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);
+  s.bayes_confirm_edges = c.Get<int>("bayes_confirm_edges", 0, 20);
   c.Finish();
   return s;
 }
@@ -45,6 +46,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise, study.bayes};
     config.bayes.settings.threshold = settings.bayes_threshold;
     config.bayes.settings.outlier = settings.bayes_outlier;
+    config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;
   }
   return config;
 }

@@ -23,6 +23,8 @@ struct LocalizerSettings {
   // The probability that a sensed edge is one the error model cannot explain (replaces the
   // study's).
   double bayes_outlier = 1e-4;
+  // Further edges over which the best place must keep the threshold.
+  int bayes_confirm_edges = 0;
 };
 
 // Reads the `localizer` section; every key required, unknown keys rejected (InputError with

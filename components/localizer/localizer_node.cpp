@@ -172,6 +172,10 @@ class LocalizerNode : public runtime::ProcessNode {
       // written: transport, matching, publication.
       pose_latency_.Add((ctx_->now_ns() - odometry_->source_timestamp_ns()) * 1e-6);
       ctx_->log->info("{}: {} ({} edges sensed)", ToString(e.status), e.message, e.edges_sensed);
+      if (e.status == Status::kLocalized && !was_localized_) {
+        ctx_->log->info("sensed: {}", map::Describe(localizer_->sensed_sequence()));
+      }
+      was_localized_ = e.status == Status::kLocalized;
     }
   }
 
@@ -208,6 +212,7 @@ class LocalizerNode : public runtime::ProcessNode {
   double head_radius_in_ = 0.0;
   std::unique_ptr<Localizer> localizer_;
   uint64_t landmarks_used_ = 0;
+  bool was_localized_ = false;
   runtime::LatencyLog observation_latency_, pose_latency_;
   std::unique_ptr<runtime::Writer<msgs::LocalizationPosePubSubType>> pose_;
   std::unique_ptr<runtime::Writer<msgs::PoseHypothesesPubSubType>> hypotheses_;

@@ -40,6 +40,7 @@ void BayesLocalizer::Reset() {
   status_ = RecoveryStatus::kEmpty;
   best_ = PoseBelief{};
   edges_ = 0;
+  above_ = 0;
 }
 
 double BayesLocalizer::WallDensity(double measured, double true_len) const {
@@ -310,8 +311,11 @@ void BayesLocalizer::Normalise() {
     const double p = a + b + c;
     if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
   }
-  status_ = best_.probability >= model_.settings.threshold ? RecoveryStatus::kLocalized
-                                                           : RecoveryStatus::kAmbiguous;
+  // The pose is declared once the best place has held the threshold over confirm_edges
+  // further edges as well.
+  above_ = best_.probability >= model_.settings.threshold ? above_ + 1 : 0;
+  status_ = above_ > model_.settings.confirm_edges ? RecoveryStatus::kLocalized
+                                                   : RecoveryStatus::kAmbiguous;
 }
 
 std::vector<PoseBelief> BayesLocalizer::Top(int k) const {

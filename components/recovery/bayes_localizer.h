@@ -86,6 +86,7 @@ class BayesLocalizer {
   std::vector<std::uint8_t> nlb1_, nlb2_;
   RecoveryStatus status_ = RecoveryStatus::kEmpty;
   PoseBelief best_;
+  int above_ = 0;  // consecutive edges the best place held the threshold
   int edges_ = 0;
   std::uint64_t rejected_ = 0;
 };

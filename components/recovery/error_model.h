@@ -102,6 +102,9 @@ struct BayesSettings {
   double outlier = 1e-4;            // probability that a sensed edge is unexplained
   int max_missed_doors = 2;         // missed doors one sensed wall may span
   double angle_tolerance_deg = 20;  // sensed corner angle vs map
+  // Further edges over which the best place must keep the threshold before it is reported
+  // (0: at once, as the study does).
+  int confirm_edges = 0;
 };
 
 struct StudyConfig {

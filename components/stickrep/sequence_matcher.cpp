@@ -100,4 +100,19 @@ std::vector<SensedEdge> ExactSequence(const MatchIndex& index, int start, int di
   return out;
 }
 
+std::string Describe(const SensedEdge& e) {
+  std::string s = SymbolName(e.code);
+  if (CodeHasMetric(e.code)) s += ":" + std::to_string(static_cast<long>(std::lround(e.metric_in)));
+  if (std::isfinite(e.angle_deg) && std::abs(e.angle_deg - 180.0) > 1.0) {
+    s = "<" + std::to_string(static_cast<long>(std::lround(e.angle_deg))) + "> " + s;
+  }
+  return s;
+}
+
+std::string Describe(const std::vector<SensedEdge>& edges) {
+  std::string s;
+  for (const SensedEdge& e : edges) s += (s.empty() ? "" : " ") + Describe(e);
+  return s;
+}
+
 }  // namespace stickrep::map

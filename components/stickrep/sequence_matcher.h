@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "stickrep/map.h"
@@ -44,6 +45,11 @@ struct SensedEdge {
   // The robot started inside this edge and saw only part of it: the metric is a lower bound.
   bool metric_is_lower_bound = false;
 };
+
+// One sensed edge in words, for logs and traces: "door36", "wall:46", "<270> wall:130".
+std::string Describe(const SensedEdge& edge);
+// A sequence of them, space-separated.
+std::string Describe(const std::vector<SensedEdge>& edges);
 
 // How far a sensed value may be from the map and still match. With all zero the match is
 // exact, which is what "no sensing error" means (§6.4.1).

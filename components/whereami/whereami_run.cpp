@@ -40,15 +40,6 @@ map::DoorClass ToMap(sensing::DoorClass c) {
   return map::DoorClass::k36;
 }
 
-std::string Symbol(map::SymbolCode code, double metric_in, double angle_deg) {
-  std::string s = map::SymbolName(code);
-  if (map::CodeHasMetric(code)) s += fmt::format(":{:.0f}", metric_in);
-  if (std::isfinite(angle_deg) && std::abs(angle_deg - 180.0) > 1.0) {
-    s = fmt::format("<{:.0f}> ", angle_deg) + s;
-  }
-  return s;
-}
-
 StrictYaml Section(const std::string& file, const std::string& key) {
   return StrictYaml::LoadFile(file).Child(key);
 }
@@ -173,8 +164,10 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
       if (e != last_view_edge) {
         last_view_edge = e;
         const map::Edge& edge = view_ring.edges[e];
-        result.true_trace += fmt::format("{}{}[{}] ", result.true_trace.empty() ? "" : "",
-                                         Symbol(map::CodeOf(edge), edge.metric_in, NAN), e);
+        map::SensedEdge as_sensed;
+        as_sensed.code = map::CodeOf(edge);
+        as_sensed.metric_in = edge.metric_in;
+        result.true_trace += fmt::format("{}[{}] ", map::Describe(as_sensed), e);
       }
     }
     sim_step.Due(t);
@@ -293,9 +286,7 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   result.collisions = sim.Truth().collisions;
   const std::vector<map::SensedEdge>& sensed =
       measuring ? assembler.sequence() : localizer.sensed_sequence();
-  for (const map::SensedEdge& e : sensed) {
-    result.sensed_trace += Symbol(e.code, e.metric_in, e.angle_deg) + " ";
-  }
+  result.sensed_trace = map::Describe(sensed);
   if (measuring && !truth_samples.empty()) {
     // From 20 ft on: the robot has aligned and the partial first edges are behind.
     const double start = truth_samples.front().odometer_in;

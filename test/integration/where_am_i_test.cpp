@@ -20,8 +20,11 @@ namespace {
 
 constexpr const char* kSmallMap = STICKREP_SOURCE_DIR "/test/maps/wing1_corridor.yaml";
 constexpr int kSmallMapEdges = 118;
-// Simulated seconds per wall second. The runs take 20-60 s simulated.
-constexpr const char* kRealTimeFactor = "5";
+// Simulated seconds per wall second. The runs take 20-60 s simulated. 3x leaves the machine
+// room for the other tests that ctest -j2 runs beside this one: starved of CPU, the landmark
+// process misses frames, doors go unseen, and the matcher is given a sequence with more
+// missed doors than its model expects.
+constexpr const char* kRealTimeFactor = "3";
 
 // A shipped config file with some keys of its section replaced.
 std::string ConfigWith(const std::string& file, const std::map<std::string, std::string>& keys) {
