@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "recovery/test_support.h"
 
@@ -18,11 +19,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 class BayesLocalizerTest : public ::testing::Test {
  protected:
-  BayesLocalizer Make(const ErrorModel& em, double threshold = 0.99) {
+  BayesLocalizer Make(const ErrorModel& em, double threshold = 0.99, int confirm_edges = 0) {
     BayesModel m;
     m.confusion = Resolve(em, index_);
     m.noise = SensingNoise{};
     m.settings.threshold = threshold;
+    m.settings.confirm_edges = confirm_edges;
     return BayesLocalizer(index_, m);
   }
   map::Map map_ = testing::CorridorMap();
@@ -45,6 +47,23 @@ TEST_F(BayesLocalizerTest, ExactSequenceEndsAtTheTruth) {
   EXPECT_EQ(b.best().edge, 10);
   EXPECT_EQ(b.best().dir, +1);
   EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
+}
+
+TEST_F(BayesLocalizerTest, ConfirmationWaitsForTheThresholdToHoldOverMoreEdges) {
+  BayesLocalizer now = Make(ErrorModel::Paper());
+  BayesLocalizer later = Make(ErrorModel::Paper(), 0.99, 1);
+  int first_now = -1, first_later = -1;
+  const std::vector<map::SensedEdge> edges = {Wall(150, kNaN, true), Door(DoorClass::k40),
+                                              Wall(90), Door(DoorClass::k36), Wall(75)};
+  for (int i = 0; i < static_cast<int>(edges.size()); ++i) {
+    now.Add(edges[i]);
+    later.Add(edges[i]);
+    if (first_now < 0 && now.status() == RecoveryStatus::kLocalized) first_now = i;
+    if (first_later < 0 && later.status() == RecoveryStatus::kLocalized) first_later = i;
+  }
+  ASSERT_GE(first_now, 0);
+  EXPECT_EQ(first_later, first_now + 1);
+  EXPECT_EQ(later.best().edge, now.best().edge);
 }
 
 TEST_F(BayesLocalizerTest, PosteriorSumsToOneAndTopIsSorted) {
