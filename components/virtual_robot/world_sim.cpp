@@ -277,32 +277,26 @@ SimTruth WorldSim::Truth() const {
 
   // The nearest stretch of the hallway axis. The travel direction is judged on it (at a
   // corner, where two stretches are equally near, on the one the base travelled along).
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const world::OffsetSegment& seg : axis_) {
-    nearest = std::min(nearest, SegmentDistance(p, seg.a_in, seg.b_in));
+  const int segments = static_cast<int>(axis_.size());
+  std::vector<double> distance(segments), along_axis(segments);
+  int nearest = 0;
+  for (int j = 0; j < segments; ++j) {
+    distance[j] = SegmentDistance(p, axis_[j].a_in, axis_[j].b_in, &along_axis[j]);
+    if (distance[j] < distance[nearest]) nearest = j;
   }
   double best_alignment = -1.0;
-  for (const world::OffsetSegment& seg : axis_) {
-    const double along = last_motion_.dot(Unit(seg.a_in, seg.b_in));
-    if (SegmentDistance(p, seg.a_in, seg.b_in) < nearest + 1.0 &&
-        std::abs(along) > best_alignment) {
+  for (int j = 0; j < segments; ++j) {
+    const double along = last_motion_.dot(Unit(axis_[j].a_in, axis_[j].b_in));
+    if (distance[j] < distance[nearest] + 1.0 && std::abs(along) > best_alignment) {
       best_alignment = std::abs(along);
       t.forward_in_ring = along > 0.0;
     }
   }
-  nearest = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < static_cast<int>(axis_.size()); ++j) {
-    const Eigen::Vector2d a = axis_[j].a_in, b = axis_[j].b_in;
-    double f = 0.0;
-    const double d = SegmentDistance(p, a, b, &f);
-    if (d < nearest) {
-      nearest = d;
-      const Eigen::Vector2d u = Unit(a, b);
-      t.lateral_offset_in = (p - a).dot(-Left(u));
-      t.heading_error_rad = WrapPi(X_WR_.theta_rad - std::atan2(-u.y(), -u.x()));
-      t.axis_position_in = axis_start_in_[j] + f * (b - a).norm();
-    }
-  }
+  const Eigen::Vector2d a = axis_[nearest].a_in, b = axis_[nearest].b_in;
+  const Eigen::Vector2d u = Unit(a, b);
+  t.lateral_offset_in = (p - a).dot(-Left(u));
+  t.heading_error_rad = WrapPi(X_WR_.theta_rad - std::atan2(-u.y(), -u.x()));
+  t.axis_position_in = axis_start_in_[nearest] + along_axis[nearest] * (b - a).norm();
   // Corners are where the axis bends (an open ring's ends are not).
   t.corner_distance_in = std::numeric_limits<double>::infinity();
   for (int j = closed_ ? 0 : 1; j < static_cast<int>(axis_.size()); ++j) {
