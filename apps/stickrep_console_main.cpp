@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   app.add_option("--system", o.system_file, "deployment settings (domain, QoS file)");
   app.add_option("--domain", o.domain_id, "DDS domain id, overriding the system file")
       ->check(CLI::Range(0, 232));
+  stickrep::runtime::AddDeploymentOptions(app, o.deployment);
   app.require_subcommand(1);
   CLI::App* list = app.add_subcommand("list", "every topic on the domain with its QoS");
   list->add_option("--wait", o.wait_s, "seconds to listen to discovery")->check(CLI::PositiveNumber);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <memory>
@@ -22,19 +23,28 @@ namespace {
 
 struct Session {
   runtime::SystemConfig system;
-  std::unique_ptr<runtime::DiscoveryListener> listener;
   std::unique_ptr<runtime::Participant> participant;
+  const runtime::DiscoveryListener* listener = nullptr;
 };
 
 Session Join(const ConsoleOptions& o) {
   Session s;
   s.system = runtime::SystemConfig::LoadFile(o.system_file);
   if (o.domain_id >= 0) s.system.domain_id = o.domain_id;
-  s.listener = std::make_unique<runtime::DiscoveryListener>();
   s.participant = std::make_unique<runtime::Participant>(
-      runtime::ParticipantConfig{s.system.domain_id, "stickrep-console",
-                                 s.system.fastdds_profile_xml, s.system.fastdds_profile_name},
-      runtime::QosCatalog::LoadFile(s.system.qos_file), s.listener.get());
+      runtime::MakeParticipantConfig(s.system, o.deployment, "stickrep-console"),
+      runtime::QosCatalog::LoadFile(s.system.qos_file));
+  s.listener = &s.participant->discovery();
+  if (s.listener->UsesServers()) {
+    // Discovery goes through the server: wait (bounded) until it is reached, then listen.
+    const bool reached = runtime::WaitFor(
+        [&] { return s.listener->ServersReached() > 0 || !runtime::KeepRunning().load(); },
+        std::max(5.0, o.wait_s));
+    if (!reached || s.listener->ServersReached() == 0) {
+      fmt::print(stderr, "stickrep-console: no discovery server reached at {}\n",
+                 s.participant->servers_text());
+    }
+  }
   return s;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/deployment_options.h"
 #include "runtime/discovery.h"
 
 namespace stickrep::console {
@@ -16,6 +17,9 @@ struct ConsoleOptions {
   int count = 0;               // `echo`: stop after this many samples (0: until stopped)
   double timeout_s = 0.0;      // `echo`: give up after this long (0: never)
   bool json = false;
+  // Fast DDS profile and discovery servers; the console joins a discovery-server deployment
+  // as a super client (deploy/fastdds/discovery_client.xml) so that it sees every topic.
+  runtime::DeploymentOptions deployment;
 };
 
 // `list`: every topic seen on the domain with its type, writer and reader counts and QoS.

@@ -53,6 +53,7 @@ const char* Name(msgs::MissionState s) {
     case msgs::MISSION_EXECUTING_GOAL: return "EXECUTING_GOAL";
     case msgs::MISSION_GOAL_REACHED: return "GOAL_REACHED";
     case msgs::MISSION_STOPPED_FAULT: return "STOPPED_FAULT";
+    case msgs::MISSION_LINK_LOST: return "LINK_LOST";
   }
   return "?";
 }
@@ -217,7 +218,7 @@ json ToJson(const msgs::ComponentStatus& m) {
   return {{"header", Header(m.header())},         {"component_name", m.component_name()},
           {"state", Name(m.state())},            {"samples_in", m.samples_in()},
           {"samples_out", m.samples_out()},      {"samples_dropped", m.samples_dropped()},
-          {"message", m.message()}};
+          {"message", m.message()},              {"host", m.host()}};
 }
 
 json ToJson(const msgs::GroundTruth& m) {

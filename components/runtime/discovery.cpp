@@ -71,6 +71,47 @@ void DiscoveryListener::on_subscriber_discovery(dds::DomainParticipant*,
   by_guid_[guid] = e;
 }
 
+void DiscoveryListener::SetServers(std::vector<std::string> server_prefixes) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  servers_ = std::move(server_prefixes);
+}
+
+void DiscoveryListener::on_participant_discovery(
+    dds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) {
+  using Info = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+  std::ostringstream prefix;
+  prefix << info.info.m_guid.guidPrefix;
+  std::lock_guard<std::mutex> lock(mutex_);
+  switch (info.status) {
+    case Info::DISCOVERED_PARTICIPANT:
+    case Info::CHANGED_QOS_PARTICIPANT:
+      participants_[prefix.str()] = info.info.m_participantName.to_string();
+      break;
+    default:  // removed, dropped or ignored
+      participants_.erase(prefix.str());
+      break;
+  }
+}
+
+std::vector<std::string> DiscoveryListener::Participants() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> out;
+  for (const auto& [prefix, name] : participants_) out.push_back(name);
+  return out;
+}
+
+bool DiscoveryListener::UsesServers() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return !servers_.empty();
+}
+
+int DiscoveryListener::ServersReached() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  int n = 0;
+  for (const std::string& s : servers_) n += participants_.count(s) > 0 ? 1 : 0;
+  return n;
+}
+
 std::vector<DiscoveredEndpoint> DiscoveryListener::Endpoints() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<DiscoveredEndpoint> out;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/participant.h"
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 
 namespace stickrep::runtime {
 
@@ -37,18 +37,31 @@ struct TopicSummary {
   bool mixed_qos = false;        // endpoints disagree on reliability or durability
 };
 
-// Listens to DDS discovery and keeps the set of remote writers and readers by GUID.
+// Listens to DDS discovery and keeps the set of remote participants, writers and readers.
+// Every Participant owns one; the console reads it to show what is on the domain.
 class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListener {
  public:
+  // The discovery servers this participant is a client of (GUID prefixes as text), so that
+  // reaching and losing them can be told.
+  void SetServers(std::vector<std::string> server_prefixes);
+  void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
   void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant*,
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
   void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
   std::vector<DiscoveredEndpoint> Endpoints() const;
+  // Names of the remote participants alive now.
+  std::vector<std::string> Participants() const;
+  bool UsesServers() const;
+  // How many of the configured discovery servers are discovered now.
+  int ServersReached() const;
 
  private:
   mutable std::mutex mutex_;
   std::map<std::string, DiscoveredEndpoint> by_guid_;
+  std::map<std::string, std::string> participants_;  // GUID prefix -> name
+  std::vector<std::string> servers_;
 };
 
 // Folds endpoints into one summary per topic, sorted by topic name.

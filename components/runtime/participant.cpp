@@ -4,6 +4,11 @@
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <tinyxml2.h>
+
+#include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 #include "common/input_error.h"
@@ -69,28 +74,96 @@ dds::DataReaderQos ToDataReaderQos(const QosProfile& p, dds::DataReaderQos q) {
   return q;
 }
 
-Participant::Participant(const ParticipantConfig& config, QosCatalog catalog,
-                         dds::DomainParticipantListener* listener)
-    : config_(config), catalog_(std::move(catalog)) {
-  auto* factory = dds::DomainParticipantFactory::get_instance();
-  if (!config_.profile_xml.empty()) {
-    if (factory->load_XML_profiles_file(config_.profile_xml) != ReturnCode_t::RETCODE_OK) {
-      throw InputError(config_.profile_xml, 0, "",
-                       "Fast DDS could not load this XML profile file");
+void CheckProfileXml(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw InputError(path, 0, "", "no such Fast DDS XML profile file");
+  }
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw InputError(path, doc.ErrorLineNum(), "",
+                     std::string("malformed XML: ") + doc.ErrorStr());
+  }
+  if (doc.RootElement() == nullptr || std::string(doc.RootElement()->Name()) != "dds") {
+    throw InputError(path, 1, "", "not a Fast DDS profile file (the root element must be <dds>)");
+  }
+}
+
+namespace {
+
+std::string JoinServers(const std::vector<std::string>& servers, const char* separator) {
+  std::string out;
+  for (const std::string& s : servers) out += (out.empty() ? "" : separator) + s;
+  return out;
+}
+
+std::string PrefixText(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) {
+  std::ostringstream s;
+  s << prefix;
+  return s.str();
+}
+
+std::string LocatorsText(const eprosima::fastdds::rtps::RemoteServerList_t& servers) {
+  std::vector<std::string> out;
+  for (const auto& server : servers) {
+    for (const auto& l : server.metatrafficUnicastLocatorList) {
+      out.push_back(eprosima::fastrtps::rtps::IPLocator::toIPv4string(l) + ":" +
+                    std::to_string(l.port));
     }
   }
-  dds::DomainParticipantQos pqos;
-  if (!config_.profile_xml.empty() && !config_.profile_name.empty()) {
-    if (factory->get_participant_qos_from_profile(config_.profile_name, pqos) !=
-        ReturnCode_t::RETCODE_OK) {
+  return JoinServers(out, ",");
+}
+
+}  // namespace
+
+dds::DomainParticipantQos Participant::LoadQos() {
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  dds::DomainParticipantQos pqos = factory->get_default_participant_qos();
+  if (!config_.profile_xml.empty()) {
+    CheckProfileXml(config_.profile_xml);
+    if (factory->load_XML_profiles_file(config_.profile_xml) != ReturnCode_t::RETCODE_OK) {
+      throw InputError(config_.profile_xml, 0, "",
+                       "Fast DDS refused this XML profile file (its reason is logged above)");
+    }
+    if (config_.profile_name.empty()) {
+      pqos = factory->get_default_participant_qos();  // the file's default profile, if any
+    } else if (factory->get_participant_qos_from_profile(config_.profile_name, pqos) !=
+               ReturnCode_t::RETCODE_OK) {
       throw InputError(config_.profile_xml, 0, config_.profile_name,
                        "no participant profile with this name in the XML file");
     }
-  } else {
-    pqos = factory->get_default_participant_qos();  // the XML default profile, if any
   }
+  auto& discovery = pqos.wire_protocol().builtin.discovery_config;
+  if (!config_.discovery_servers.empty()) {
+    eprosima::fastdds::rtps::RemoteServerList_t servers;
+    const std::string list = JoinServers(config_.discovery_servers, ";");
+    if (!eprosima::fastdds::rtps::load_environment_server_info(list, servers)) {
+      throw InputError("--discovery-server", 0, list,
+                       "not a list of IPv4 discovery server addresses IP:PORT");
+    }
+    discovery.m_DiscoveryServers = servers;
+    if (discovery.discoveryProtocol == eprosima::fastrtps::rtps::DiscoveryProtocol_t::SIMPLE) {
+      discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+    }
+  }
+  using Protocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t;
+  if (discovery.discoveryProtocol == Protocol::CLIENT ||
+      discovery.discoveryProtocol == Protocol::SUPER_CLIENT) {
+    std::vector<std::string> prefixes;
+    for (const auto& server : discovery.m_DiscoveryServers) {
+      prefixes.push_back(PrefixText(server.guidPrefix));
+    }
+    discovery_.SetServers(prefixes);
+    servers_text_ = LocatorsText(discovery.m_DiscoveryServers);
+  }
+  return pqos;
+}
+
+Participant::Participant(const ParticipantConfig& config, QosCatalog catalog)
+    : config_(config), catalog_(std::move(catalog)) {
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  dds::DomainParticipantQos pqos = LoadQos();
   pqos.name(config_.name);
-  participant_ = factory->create_participant(config_.domain_id, pqos, listener,
+  participant_ = factory->create_participant(config_.domain_id, pqos, &discovery_,
                                              dds::StatusMask::none());
   if (participant_ == nullptr) {
     throw std::runtime_error("could not create a DDS participant on domain " +

@@ -13,7 +13,9 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
+#include "runtime/discovery.h"
 #include "runtime/qos_catalog.h"
 
 namespace stickrep::runtime {
@@ -26,17 +28,24 @@ struct ParticipantConfig {
   std::string profile_xml;
   // Participant profile inside that file; empty for the file's default profile.
   std::string profile_name;
+  // Discovery servers ("IP:PORT", the i-th with the GUID prefix of `fast-discovery-server
+  // -i i`). Given, they replace the profile's server list, and a participant whose profile
+  // uses simple (multicast) discovery becomes a discovery-server client.
+  std::vector<std::string> discovery_servers;
 };
+
+// Checks that a Fast DDS XML profile file exists and is well-formed XML; throws InputError
+// naming the file, the line and the parser's reason.
+void CheckProfileXml(const std::string& path);
 
 // Owns one DomainParticipant with one Publisher and one Subscriber, and creates topics and
 // endpoints with the QoS that the catalog names for each topic. Not copyable; destroy it
 // after every Writer and Reader made from it.
 class Participant {
  public:
-  // Throws InputError if the XML profile cannot be loaded, std::runtime_error if DDS fails.
-  // `listener`, if given, hears of remote endpoints being discovered (the console).
-  Participant(const ParticipantConfig& config, QosCatalog catalog,
-              eprosima::fastdds::dds::DomainParticipantListener* listener = nullptr);
+  // Throws InputError if the XML profile cannot be loaded or a server address is malformed,
+  // std::runtime_error if DDS fails.
+  Participant(const ParticipantConfig& config, QosCatalog catalog);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
@@ -45,6 +54,11 @@ class Participant {
   const std::string& name() const { return config_.name; }
   int domain_id() const { return config_.domain_id; }
   eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
+  // What discovery has found: remote participants, writers and readers, servers reached.
+  const DiscoveryListener& discovery() const { return discovery_; }
+  // The discovery servers in use, as text for messages ("10.0.0.1:11811"); empty when the
+  // participant uses simple (multicast) discovery.
+  const std::string& servers_text() const { return servers_text_; }
 
   // Raw endpoint creation for the typed wrappers (endpoint.h).
   eprosima::fastdds::dds::DataWriter* CreateDataWriter(
@@ -60,8 +74,12 @@ class Participant {
   eprosima::fastdds::dds::Topic* GetTopic(const std::string& topic,
                                           eprosima::fastdds::dds::TopicDataType* type);
 
+  eprosima::fastdds::dds::DomainParticipantQos LoadQos();
+
   ParticipantConfig config_;
   QosCatalog catalog_;
+  DiscoveryListener discovery_;
+  std::string servers_text_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

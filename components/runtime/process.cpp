@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "common/input_error.h"
+#include "runtime/deployment_options.h"
 #include "runtime/endpoint.h"
 #include "runtime/status_reporter.h"
 
@@ -62,6 +63,8 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
       ->check(CLI::NonNegativeNumber);
   app.add_option("--log-level", log_level, "trace, debug, info, warn or error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  DeploymentOptions deployment;
+  AddDeploymentOptions(app, deployment);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -88,20 +91,21 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
     config_root.Finish();
 
     participant = std::make_unique<Participant>(
-        ParticipantConfig{system->domain_id, "stickrep-" + name, system->fastdds_profile_xml,
-                          system->fastdds_profile_name},
-        std::move(catalog));
-    StatusReporter status(*participant, name, counters);
-    NodeContext ctx{name,   *participant, executor,       log, *system,
-                    config, counters,     WallClockNowNs, [] { KeepRunning() = false; }};
+        MakeParticipantConfig(*system, deployment, "stickrep-" + name), std::move(catalog));
+    const std::string host = HostLabel(deployment);
+    StatusReporter status(*participant, name, host, counters);
+    NodeContext ctx{name,   *participant, executor,       log,  *system,
+                    config, counters,     WallClockNowNs, host, [] { KeepRunning() = false; }};
     node = make_node();
     node->Configure(ctx);
     status.Publish(StatusReporter::State::kInactive, "configured");
-    log->info("configured on domain {} ({})", system->domain_id, config_file);
+    log->info("configured on domain {} on host '{}' ({})", system->domain_id, host, config_file);
+    WatchDiscoveryServers(*participant, executor, log);
 
     node->Activate();
     status.Publish(StatusReporter::State::kActive, "active");
-    executor.AddTimer(1.0, [&] { status.Publish(StatusReporter::State::kActive, "active"); });
+    executor.AddTimer(kHeartbeatPeriodS,
+                     [&] { status.Publish(StatusReporter::State::kActive, "active"); });
     log->info("active");
     const auto until = run_for_s > 0.0
                            ? Executor::Clock::now() +

@@ -49,6 +49,7 @@ struct NodeContext {
   StrictYaml config;  // the component's own top-level key, e.g. `sonar:`
   SampleCounters& counters;
   std::function<int64_t()> now_ns;
+  std::string host;  // the label of the host the process runs on (--host)
   // Ends the process cleanly after the current callback (a mission that is done).
   std::function<void()> request_stop;
 };

@@ -6,16 +6,18 @@
 namespace stickrep::runtime {
 
 struct StatusReporter::Impl {
-  Impl(Participant& p, std::string c, const SampleCounters& k)
-      : writer(p, "system/status"), component(std::move(c)), counters(k) {}
+  Impl(Participant& p, std::string c, std::string h, const SampleCounters& k)
+      : writer(p, "system/status"), component(std::move(c)), host(std::move(h)), counters(k) {}
   Writer<msgs::ComponentStatusPubSubType> writer;
   std::string component;
+  std::string host;
   const SampleCounters& counters;
 };
 
 StatusReporter::StatusReporter(Participant& participant, std::string component,
-                               const SampleCounters& counters)
-    : impl_(std::make_unique<Impl>(participant, std::move(component), counters)) {}
+                               std::string host, const SampleCounters& counters)
+    : impl_(std::make_unique<Impl>(participant, std::move(component), std::move(host),
+                                   counters)) {}
 
 StatusReporter::~StatusReporter() = default;
 
@@ -32,6 +34,7 @@ void StatusReporter::Publish(State state, const std::string& message) {
   s.samples_out(impl_->counters.out());
   s.samples_dropped(impl_->counters.dropped());
   s.message(message);
+  s.host(impl_->host);
   impl_->writer.Publish(s, WallClockNowNs());
 }
 

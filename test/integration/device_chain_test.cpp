@@ -82,7 +82,7 @@ TEST_F(DeviceChainTest, SamplesFlowThroughTheDeviceProcessesWithTheCataloguedQos
   EXPECT_EQ(frames->history, "keep_last 1");
   const auto* heartbeat = Find(topics, "system/status");
   EXPECT_EQ(heartbeat->durability, "transient_local");
-  EXPECT_DOUBLE_EQ(heartbeat->liveliness_lease_s, 1.5);
+  EXPECT_DOUBLE_EQ(heartbeat->liveliness_lease_s, 1.0);
   EXPECT_EQ(heartbeat->writers, 4);
   const auto* wheels = Find(topics, "device/base/wheel_command");
   EXPECT_EQ(wheels->reliability, "reliable");

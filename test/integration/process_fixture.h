@@ -50,7 +50,7 @@ class ProcessFixture : public ::testing::Test {
   runtime::Participant& participant() { return *participant_; }
   // Every endpoint the test's participant has discovered on the domain.
   std::vector<runtime::TopicSummary> Topics() const {
-    return runtime::Summarise(discovery_.Endpoints());
+    return runtime::Summarise(participant_->discovery().Endpoints());
   }
   runtime::Executor& executor() { return executor_; }
   int domain_id() const { return domain_id_; }
@@ -59,7 +59,6 @@ class ProcessFixture : public ::testing::Test {
   int domain_id_;
   DomainLock lock_;
   runtime::Executor executor_;
-  runtime::DiscoveryListener discovery_;
   std::unique_ptr<runtime::Participant> participant_;
   std::vector<std::unique_ptr<launch::ChildProcess>> processes_;
 };

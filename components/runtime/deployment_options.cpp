@@ -1,0 +1,89 @@
+#include "runtime/deployment_options.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <chrono>
+
+namespace stickrep::runtime {
+
+void AddDeploymentOptions(CLI::App& app, DeploymentOptions& o) {
+  app.add_option("--fastdds-profile", o.profile_xml,
+                 "Fast DDS XML profile file (transports, discovery), over the system file's");
+  app.add_option("--fastdds-profile-name", o.profile_name,
+                 "participant profile in that file (default: the file's default profile)");
+  app.add_option("--discovery-server", o.discovery_servers,
+                 "discovery server addresses IP:PORT[,IP:PORT] (the i-th is server id i); "
+                 "makes this process a discovery-server client");
+  app.add_option("--host", o.host, "label of the host this process runs on, sent in its "
+                                   "heartbeat (default: the host name)");
+}
+
+ParticipantConfig MakeParticipantConfig(const SystemConfig& system, const DeploymentOptions& o,
+                                        const std::string& participant_name) {
+  ParticipantConfig c{system.domain_id, participant_name, system.fastdds_profile_xml,
+                      system.fastdds_profile_name, {}};
+  if (!o.profile_xml.empty()) {
+    c.profile_xml = o.profile_xml;
+    c.profile_name = o.profile_name;
+  } else if (!o.profile_name.empty()) {
+    c.profile_name = o.profile_name;
+  }
+  c.discovery_servers = SplitServerList(o.discovery_servers);
+  return c;
+}
+
+std::string HostLabel(const DeploymentOptions& o) {
+  if (!o.host.empty()) return o.host;
+  char name[256] = {};
+  if (gethostname(name, sizeof(name) - 1) != 0) return "?";
+  return name;
+}
+
+std::vector<std::string> SplitServerList(const std::string& text) {
+  std::vector<std::string> out;
+  std::string current;
+  for (const char ch : text + ",") {
+    if (ch == ',' || ch == ';') {
+      if (!current.empty()) out.push_back(current);
+      current.clear();
+    } else if (ch != ' ') {
+      current += ch;
+    }
+  }
+  return out;
+}
+
+void WatchDiscoveryServers(const Participant& participant, Executor& executor,
+                           std::shared_ptr<spdlog::logger> log, double warn_period_s) {
+  if (!participant.discovery().UsesServers()) return;
+  struct State {
+    int reached = 0;
+    std::chrono::steady_clock::time_point since = std::chrono::steady_clock::now();
+    double next_warn_s = 5.0;
+  };
+  auto state = std::make_shared<State>();
+  log->info("discovery through the server(s) at {}", participant.servers_text());
+  executor.AddTimer(1.0, [&participant, log, state, warn_period_s] {
+    const int reached = participant.discovery().ServersReached();
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                        state->since).count();
+    if (reached > 0 && state->reached == 0) {
+      log->info("discovery server reached ({} of them) after {:.1f} s", reached, waited);
+    } else if (reached == 0 && state->reached > 0) {
+      log->warn("discovery server at {} lost: peers already discovered keep talking; "
+                "retrying", participant.servers_text());
+      state->since = std::chrono::steady_clock::now();
+      state->next_warn_s = 5.0;
+    } else if (reached == 0 && waited >= state->next_warn_s) {
+      log->warn("no discovery server reached at {} for {:.0f} s: processes on other hosts "
+                "cannot be found yet; retrying", participant.servers_text(), waited);
+      state->next_warn_s += warn_period_s;
+    }
+    state->reached = reached;
+  });
+}
+
+}  // namespace stickrep::runtime
