@@ -16,6 +16,7 @@ ExecutiveConfig LoadExecutiveConfig(const StrictYaml& c) {
   mission.align_timeout_s = c.Get<double>("align_timeout_s", 1.0, 600.0, "s");
   out.command_rate_hz = c.Get<double>("command_rate_hz", 2.0, 100.0, "Hz");
   out.heartbeat_timeout_s = c.Get<double>("heartbeat_timeout_s", 0.5, 60.0, "s");
+  out.link_settle_s = c.Get<double>("link_settle_s", 0.6, 30.0, "s");
   out.exit_when_localized = c.Get<bool>("exit_when_localized");
   c.Finish();
   return out;

@@ -1,6 +1,7 @@
 #include "executive/executive_node.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <map>
@@ -9,6 +10,7 @@
 #include "basePubSubTypes.h"
 #include "executive/executive.h"
 #include "executive/executive_config.h"
+#include "executive/link_monitor.h"
 #include "executive/mission.h"
 #include "executive/route.h"
 #include "stickrep/map_io.h"
@@ -30,6 +32,7 @@ msgs::MissionState ToMsg(MissionState s) {
     case MissionState::kExecutingGoal: return msgs::MISSION_EXECUTING_GOAL;
     case MissionState::kGoalReached: return msgs::MISSION_GOAL_REACHED;
     case MissionState::kStoppedFault: return msgs::MISSION_STOPPED_FAULT;
+    case MissionState::kLinkLost: return msgs::MISSION_LINK_LOST;
   }
   return msgs::MISSION_STOPPED_FAULT;
 }
@@ -41,7 +44,8 @@ class ExecutiveNode : public runtime::ProcessNode {
     const ExecutiveConfig config = LoadExecutiveConfig(ctx.config);
     const MissionConfig& mission = config.mission;
     const double command_rate_hz = config.command_rate_hz;
-    heartbeat_timeout_s_ = config.heartbeat_timeout_s;
+    links_ = std::make_unique<LinkMonitor>(ctx.host, config.heartbeat_timeout_s,
+                                           config.link_settle_s);
     exit_when_localized_ = config.exit_when_localized;
     map_ = std::make_unique<map::Map>(map::LoadMap(ctx.system.map_file));
     executive_ = std::make_unique<Executive>(*map_, mission);
@@ -65,7 +69,7 @@ class ExecutiveNode : public runtime::ProcessNode {
         ctx.participant, ctx.executor, "system/status",
         [this](const msgs::ComponentStatus& s) { OnHeartbeat(s); });
     heartbeats_->OnInstanceGone([this](const msgs::ComponentStatus& key) {
-      Gone(key.component_name(), "its status writer disappeared");
+      links_->OnSilent(key.component_name(), "its heartbeat's liveliness was lost", NowS());
     });
     poses_ = std::make_unique<runtime::Reader<msgs::LocalizationPosePubSubType>>(
         ctx.participant, ctx.executor, "localization/pose",
@@ -94,26 +98,47 @@ class ExecutiveNode : public runtime::ProcessNode {
   }
 
  private:
+  double NowS() const { return ctx_->now_ns() * 1e-9; }
+
   void OnHeartbeat(const msgs::ComponentStatus& s) {
     ctx_->counters.CountIn();
     const std::string& name = s.component_name();
     if (s.state() == msgs::COMPONENT_FINALIZED) {
-      Gone(name, "it stopped");
+      Handle(links_->OnStopped(name));
       return;
     }
-    last_heartbeat_ns_[name] = ctx_->now_ns();
-    if (s.state() == msgs::COMPONENT_ACTIVE) mission_->OnComponentActive(name);
+    Handle(links_->OnHeartbeat(name, s.host(), NowS()));
+    if (s.state() == msgs::COMPONENT_ACTIVE && !links_->HostLost(s.host())) {
+      mission_->OnComponentActive(name);
+    }
     Report();
   }
 
-  void Gone(const std::string& name, const std::string& why) {
-    last_heartbeat_ns_.erase(name);
-    mission_->OnComponentGone(name, why);
+  // What the link monitor concluded: a dead process stops the mission; a silent host stops
+  // the robot until it is heard again.
+  void Handle(const std::vector<LinkMonitor::Event>& events) {
+    for (const LinkMonitor::Event& e : events) {
+      switch (e.kind) {
+        case LinkMonitor::Event::Kind::kProcessGone:
+          mission_->OnComponentGone(e.processes.front(), e.why);
+          break;
+        case LinkMonitor::Event::Kind::kHostLost:
+          ctx_->log->warn("{}: {}", e.why, fmt::join(e.processes, ", "));
+          mission_->OnLinkLost(e.host, e.why);
+          break;
+        case LinkMonitor::Event::Kind::kHostBack:
+          ctx_->log->info("{}: {}", e.why, fmt::join(e.processes, ", "));
+          mission_->OnLinkBack(e.host, e.outage_s, localized_);
+          for (const std::string& name : e.processes) mission_->OnComponentActive(name);
+          break;
+      }
+    }
     Report();
   }
 
   void OnPose(const msgs::LocalizationPose& p) {
     ctx_->counters.CountIn();
+    localized_ = p.status() == msgs::LOCALIZATION_LOCALIZED;
     if (p.status() == msgs::LOCALIZATION_LOCALIZED) {
       const int ring = map_->FindRing(p.best().ring_id());
       if (ring < 0) {
@@ -143,15 +168,8 @@ class ExecutiveNode : public runtime::ProcessNode {
   }
 
   void Tick() {
-    // A process whose heartbeat stopped without a goodbye has died.
     const int64_t now = ctx_->now_ns();
-    std::vector<std::string> stale;
-    for (const auto& [name, t] : last_heartbeat_ns_) {
-      if (now - t > heartbeat_timeout_s_ * 1e9) stale.push_back(name);
-    }
-    for (const std::string& name : stale) {
-      Gone(name, fmt::format("no heartbeat for {:.1f} s", heartbeat_timeout_s_));
-    }
+    Handle(links_->Tick(now * 1e-9));
     const MotionRequest m = mission_->Motion();
     msgs::MotionCommand cmd;
     cmd.mode(m.move ? msgs::MOTION_FOLLOW_HALLWAY : msgs::MOTION_STOP);
@@ -183,9 +201,9 @@ class ExecutiveNode : public runtime::ProcessNode {
   std::unique_ptr<Executive> executive_;
   Mission* mission_ = nullptr;  // executive_'s
   std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;
-  double heartbeat_timeout_s_ = 3.0;
+  std::unique_ptr<LinkMonitor> links_;
+  bool localized_ = false;  // the localizer's latest status
   bool exit_when_localized_ = false;
-  std::map<std::string, int64_t> last_heartbeat_ns_;
   std::unique_ptr<runtime::Writer<msgs::MotionCommandPubSubType>> commands_;
   std::unique_ptr<runtime::Writer<msgs::MissionStatusPubSubType>> status_;
   std::unique_ptr<runtime::Reader<msgs::ComponentStatusPubSubType>> heartbeats_;

@@ -1,6 +1,7 @@
 #include "executive/mission.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace stickrep::executive {
 
@@ -13,6 +14,7 @@ const char* ToString(MissionState s) {
     case MissionState::kExecutingGoal: return "EXECUTING_GOAL";
     case MissionState::kGoalReached: return "GOAL_REACHED";
     case MissionState::kStoppedFault: return "STOPPED_FAULT";
+    case MissionState::kLinkLost: return "LINK_LOST";
   }
   return "?";
 }
@@ -70,13 +72,62 @@ void Mission::OnComponentGone(const std::string& name, const std::string& why) {
   }
 }
 
+void Mission::OnLinkLost(const std::string& host, const std::string& why) {
+  if (state_ == MissionState::kStoppedFault || state_ == MissionState::kLinkLost) return;
+  resume_state_ = state_;
+  Enter(MissionState::kLinkLost, "link to host '" + host + "' lost (" + why +
+                                     "): robot stopped, waiting for the link");
+}
+
+void Mission::OnLinkBack(const std::string& host, double outage_s, bool localized) {
+  if (state_ != MissionState::kLinkLost) return;
+  char after[64];
+  std::snprintf(after, sizeof(after), "link to host '%s' back after %.1f s", host.c_str(),
+                outage_s);
+  switch (resume_state_) {
+    case MissionState::kLocalized:
+    case MissionState::kExecutingGoal:
+    case MissionState::kGoalReached:
+      if (localized) {
+        Enter(resume_state_, std::string(after) + ": pose kept; " + ToString(resume_state_) +
+                                 " continues");
+      } else {
+        Enter(MissionState::kRecoveringPose,
+              std::string(after) + ": pose not kept: travelling to re-acquire it");
+      }
+      return;
+    case MissionState::kAligning:
+      align_start_s_ = -1.0;
+      in_envelope_since_s_ = -1.0;
+      Enter(MissionState::kAligning, std::string(after) + ": aligning again");
+      return;
+    case MissionState::kRecoveringPose:
+      Enter(MissionState::kRecoveringPose,
+            std::string(after) + ": no pose yet: travelling to recover it");
+      return;
+    default:
+      Enter(resume_state_, std::string(after));
+      return;
+  }
+}
+
 void Mission::OnLocalized(const std::string& where) {
+  if (state_ == MissionState::kLinkLost && (resume_state_ == MissionState::kRecoveringPose ||
+                                            resume_state_ == MissionState::kAligning)) {
+    resume_state_ = MissionState::kLocalized;  // recovered from what arrived before the loss
+    message_ = "link lost; pose recovered at " + where + " meanwhile: robot stopped";
+    return;
+  }
   if (state_ == MissionState::kRecoveringPose || state_ == MissionState::kAligning) {
     Enter(MissionState::kLocalized, "pose recovered at " + where + ": holding, ready for a goal");
   }
 }
 
 void Mission::OnLost() {
+  if (state_ == MissionState::kLinkLost && resume_state_ != MissionState::kWaitingForComponents) {
+    resume_state_ = MissionState::kRecoveringPose;
+    return;
+  }
   if (state_ == MissionState::kLocalized || state_ == MissionState::kExecutingGoal ||
       state_ == MissionState::kGoalReached) {
     Enter(MissionState::kRecoveringPose, "pose lost: travelling to recover it again");
@@ -91,6 +142,8 @@ std::optional<std::string> Mission::CanTakeGoal() const {
       return std::nullopt;
     case MissionState::kStoppedFault:
       return "the robot is stopped after a fault";
+    case MissionState::kLinkLost:
+      return "the link to the robot is lost";
     default:
       return "the pose is not known yet";
   }

@@ -17,6 +17,7 @@ enum class MissionState {
   kExecutingGoal,   // travelling along the ring to the goal
   kGoalReached,
   kStoppedFault,
+  kLinkLost,        // every process of another host went silent: stopped until it is back
 };
 const char* ToString(MissionState s);
 
@@ -62,6 +63,11 @@ class Mission {
   void OnMotionState(bool in_envelope, double now_s);
   // A required process stopped or its liveliness was lost.
   void OnComponentGone(const std::string& name, const std::string& why);
+  // Every process on `host` went silent (a link or host loss): the robot is stopped and the
+  // mission waits. Back after `outage_s`: the mission continues where it was, keeping the
+  // pose if `localized` (the localizer still reports one), else recovering it again.
+  void OnLinkLost(const std::string& host, const std::string& why);
+  void OnLinkBack(const std::string& host, double outage_s, bool localized);
   void OnLocalized(const std::string& where);
   void OnLost();
   // Why a goal cannot be taken now (nothing if it can).
@@ -89,6 +95,7 @@ class Mission {
   GoalPlan goal_;
   double goal_odometer_in_ = 0.0;  // odometer reading at which the goal is reached
   std::set<std::string> active_;
+  MissionState resume_state_ = MissionState::kWaitingForComponents;  // after a link loss
   double align_start_s_ = -1.0;
   double in_envelope_since_s_ = -1.0;
   std::string message_;

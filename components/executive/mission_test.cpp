@@ -135,6 +135,65 @@ TEST(MissionTest, LostPoseStartsRecoveryAgain) {
   EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
 }
 
+Mission Recovering() {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnMotionState(true, 0.0);
+  m.OnMotionState(true, 1.0);
+  return m;
+}
+
+TEST(MissionTest, LinkLostStopsTheRobotAndRecoveryContinuesWhenItIsBack) {
+  Mission m = Recovering();
+  ASSERT_EQ(m.state(), MissionState::kRecoveringPose);
+  m.OnLinkLost("robot", "no process on host 'robot' heard for 2.1 s");
+  EXPECT_EQ(m.state(), MissionState::kLinkLost);
+  EXPECT_FALSE(m.Motion().move);
+  EXPECT_NE(m.CanTakeGoal(), std::nullopt);
+  m.OnLinkBack("robot", 3.4, false);
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_NE(m.last_message().find("back after 3.4 s"), std::string::npos);
+  EXPECT_TRUE(m.Motion().move);
+}
+
+TEST(MissionTest, LinkBackKeepsThePoseWhenTheLocalizerStillHasIt) {
+  Mission m = Recovering();
+  m.OnLocalized("ring a edge 3");
+  m.OnLinkLost("robot", "silent");
+  m.OnLinkBack("robot", 60.2, true);
+  EXPECT_EQ(m.state(), MissionState::kLocalized);
+  EXPECT_NE(m.last_message().find("pose kept"), std::string::npos);
+}
+
+TEST(MissionTest, LinkBackWithoutThePoseReacquiresItAndSaysSo) {
+  Mission m = Recovering();
+  m.OnLocalized("ring a edge 3");
+  m.OnLinkLost("robot", "silent");
+  m.OnLinkBack("robot", 5.0, false);
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_NE(m.last_message().find("re-acquire"), std::string::npos);
+}
+
+TEST(MissionTest, APoseRecoveredDuringTheLinkLossIsHeldOnceItIsBack) {
+  Mission m = Recovering();
+  m.OnLinkLost("robot", "silent");
+  m.OnLocalized("ring a edge 3");
+  EXPECT_EQ(m.state(), MissionState::kLinkLost);
+  EXPECT_FALSE(m.Motion().move);
+  m.OnLinkBack("robot", 3.0, true);
+  EXPECT_EQ(m.state(), MissionState::kLocalized);
+}
+
+TEST(MissionTest, AProcessGoneDuringTheLinkLossIsAFault) {
+  Mission m = Recovering();
+  m.OnLinkLost("robot", "silent");
+  m.OnComponentGone("sonar", "it did not come back with its host");
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+  m.OnLinkBack("robot", 3.0, true);
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+}
+
 TEST(MissionTest, TransitionsAreRecordedInOrder) {
   Mission m(TwoComponents());
   m.OnComponentActive("sonar");

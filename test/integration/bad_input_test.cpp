@@ -40,7 +40,8 @@ TEST_F(BadInputTest, GoalsTheExecutiveCannotTakeAreRefusedWithTheReason) {
       "executive.yaml",
       "executive:\n  required_components: []\n  travel_speed_ftps: 2.6\n  travel_direction: 1\n"
       "  align_speed_ftps: 1.3\n  aligned_hold_s: 1.0\n  align_timeout_s: 30\n"
-      "  command_rate_hz: 10\n  heartbeat_timeout_s: 3.0\n  exit_when_localized: false\n");
+      "  command_rate_hz: 10\n  heartbeat_timeout_s: 3.0\n  link_settle_s: 2.0\n"
+      "  exit_when_localized: false\n");
   Start("stickrep-executive", {"--config", config});
   ASSERT_TRUE(SpinUntil(
       [&] { return !statuses.empty() && statuses.back().state() == msgs::MISSION_ALIGNING; }, 20.0))
