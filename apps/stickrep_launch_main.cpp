@@ -21,12 +21,21 @@ int main(int argc, char** argv) {
   app.add_option("--domain", domain, "DDS domain id passed to every process")
       ->check(CLI::Range(0, 232));
   app.add_option("--config-dir", options.config_dir, "directory substituted for {config_dir}");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--set", options.overrides,
+                 "NAME=VALUE: a parameter of the graph, e.g. discovery_server=10.0.0.1:11811");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
+  }
   try {
     const auto graph = stickrep::launch::LaunchGraph::LoadFile(graph_file);
     if (domain >= 0) options.extra_args = {"--domain", std::to_string(domain)};
     const auto results = stickrep::launch::RunGraph(graph, options, std::cout);
     stickrep::launch::PrintResults(results, std::cout);
+    for (const auto& r : results) {
+      if (r.exit_code == stickrep::kExitBadInput && r.signal == 0) return stickrep::kExitBadInput;
+    }
     for (const auto& r : results) {
       if (r.signal == SIGKILL || (r.exit_code != 0 && r.signal == 0)) return 1;
     }

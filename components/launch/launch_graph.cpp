@@ -1,6 +1,9 @@
 #include "launch/launch_graph.h"
 
+#include <filesystem>
 #include <set>
+
+#include "common/input_error.h"
 
 namespace stickrep::launch {
 
@@ -16,16 +19,50 @@ LaunchGraph LaunchGraph::Load(const StrictYaml& root) {
   if (g.start_spacing_s < 0.0 || g.start_spacing_s > 10.0) {
     l.Fail("start_spacing_s", "must be within [0, 10] s");
   }
+  if (l.Has("parameters")) {
+    const StrictYaml params = l.Child("parameters");
+    for (const std::string& key : params.Keys()) {
+      if (key == "graph_dir" || key == "config_dir") {
+        params.Fail(key, "a built-in placeholder cannot be a parameter");
+      }
+      g.parameters[key] = params.Get<std::string>(key);
+      try {
+        SubstitutePlaceholders(g.parameters[key], {{"graph_dir", ""}, {"config_dir", ""}});
+      } catch (const InputError& e) {
+        params.Fail(key, e.reason() + " (a parameter may use only those two)");
+      }
+    }
+    params.Finish();
+  }
+  std::map<std::string, std::string> known = g.parameters;
+  known["graph_dir"] = known["config_dir"] = "";
+  const auto check = [&](const StrictYaml& node, const std::string& key, const std::string& arg) {
+    try {
+      SubstitutePlaceholders(arg, known);
+    } catch (const InputError& e) {
+      node.Fail(key, e.reason());
+    }
+  };
+  if (l.Has("common_args")) {
+    for (const StrictYaml& a : l.Sequence("common_args")) {
+      g.common_args.push_back(a.As<std::string>());
+      check(l, "common_args", g.common_args.back());
+    }
+  }
   std::set<std::string> names;
   for (const StrictYaml& p : l.Sequence("processes")) {
     ProcessSpec spec;
     spec.name = p.Get<std::string>("name");
     spec.executable = p.Get<std::string>("executable");
     if (p.Has("args")) {
-      for (const StrictYaml& a : p.Sequence("args")) spec.args.push_back(a.As<std::string>());
+      for (const StrictYaml& a : p.Sequence("args")) {
+        spec.args.push_back(a.As<std::string>());
+        check(p, "args", spec.args.back());
+      }
     } else {
       p.GetOr<std::string>("args", "");
     }
+    spec.use_common_args = p.GetOr<bool>("use_common_args", true);
     if (!names.insert(spec.name).second) p.Fail("name", "process '" + spec.name + "' twice");
     p.Finish();
     g.processes.push_back(std::move(spec));
@@ -43,17 +80,56 @@ LaunchGraph LaunchGraph::LoadFile(const std::string& path) {
   return Load(StrictYaml::LoadFile(path));
 }
 
-std::string SubstitutePlaceholders(const std::string& arg, const std::string& graph_dir,
-                                   const std::string& config_dir) {
-  std::string out = arg;
-  for (const auto& [key, value] : {std::pair<std::string, std::string>{"{graph_dir}", graph_dir},
-                                   {"{config_dir}", config_dir}}) {
-    for (auto pos = out.find(key); pos != std::string::npos; pos = out.find(key, pos)) {
-      out.replace(pos, key.size(), value);
-      pos += value.size();
+std::string SubstitutePlaceholders(const std::string& arg,
+                                   const std::map<std::string, std::string>& values) {
+  std::string out;
+  size_t pos = 0;
+  while (pos < arg.size()) {
+    const size_t open = arg.find('{', pos);
+    const size_t close = open == std::string::npos ? open : arg.find('}', open);
+    if (close == std::string::npos) {
+      out += arg.substr(pos);
+      break;
     }
+    const std::string name = arg.substr(open + 1, close - open - 1);
+    const auto it = values.find(name);
+    if (it == values.end()) {
+      throw InputError("", 0, "", "'{" + name + "}' in '" + arg +
+                                      "' is neither {graph_dir}, {config_dir} nor a parameter "
+                                      "of the graph");
+    }
+    out += arg.substr(pos, open - pos) + it->second;
+    pos = close + 1;
   }
   return out;
+}
+
+std::map<std::string, std::string> PlaceholderValues(const LaunchGraph& graph,
+                                                     const std::string& config_dir,
+                                                     const std::vector<std::string>& overrides) {
+  std::map<std::string, std::string> values = graph.parameters;
+  for (const std::string& o : overrides) {
+    const auto eq = o.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw InputError("--set", 0, o, "expected NAME=VALUE");
+    }
+    const std::string name = o.substr(0, eq);
+    if (values.count(name) == 0) {
+      std::string known;
+      for (const auto& [k, v] : graph.parameters) known += (known.empty() ? "" : ", ") + k;
+      throw InputError(graph.file, 0, "launch.parameters." + name,
+                       "--set names no parameter of this graph (it has: " +
+                           (known.empty() ? "none" : known) + ")");
+    }
+    values[name] = o.substr(eq + 1);
+  }
+  // A parameter's value may itself name {graph_dir} or {config_dir}.
+  const std::map<std::string, std::string> dirs = {
+      {"graph_dir", std::filesystem::path(graph.file).parent_path().string()},
+      {"config_dir", config_dir}};
+  for (auto& [name, value] : values) value = SubstitutePlaceholders(value, dirs);
+  values.insert(dirs.begin(), dirs.end());
+  return values;
 }
 
 }  // namespace stickrep::launch

@@ -65,17 +65,20 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
   sigaction(SIGTERM, &sa, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
-  const std::string graph_dir = std::filesystem::path(graph.file).parent_path().string();
+  const auto values = PlaceholderValues(graph, options.config_dir, options.overrides);
   size_t width = 0;
   for (const ProcessSpec& p : graph.processes) width = std::max(width, p.name.size());
   std::vector<Child> children;
   const auto started = std::chrono::steady_clock::now();
   for (const ProcessSpec& p : graph.processes) {
     std::vector<std::string> args{FindExecutable(p.executable, options.bin_dir)};
-    for (const std::string& a : p.args) {
-      args.push_back(SubstitutePlaceholders(a, graph_dir, options.config_dir));
+    for (const std::string& a : p.args) args.push_back(SubstitutePlaceholders(a, values));
+    if (p.use_common_args) {
+      for (const std::string& a : graph.common_args) {
+        args.push_back(SubstitutePlaceholders(a, values));
+      }
+      args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
     }
-    args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
     Child c;
     c.result.name = p.name;
     c.process = std::make_unique<ChildProcess>(p.name, args);
@@ -93,7 +96,11 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
     poll(fds.data(), fds.size(), 100);
     for (Child& c : children) {
       Forward(c, out, width, false);
-      if (Reap(c) && c.result.name == graph.until_exit_of) ended_by = c.result.name + " exited";
+      if (!Reap(c)) continue;
+      if (c.result.name == graph.until_exit_of) ended_by = c.result.name + " exited";
+      if (c.result.exit_code == 2 && c.result.signal == 0) {
+        ended_by = c.result.name + " refused its input (exit code 2)";
+      }
     }
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -19,13 +19,15 @@ struct ProcessResult {
 struct LaunchOptions {
   std::string bin_dir;                 // where the StickRep executables are
   std::string config_dir;              // substituted for {config_dir}
-  std::vector<std::string> extra_args; // appended to every process (e.g. --domain 5)
+  std::vector<std::string> extra_args; // appended to every StickRep process (--domain 5)
   double stop_grace_s = 10.0;          // SIGTERM, then SIGKILL after this long
+  std::vector<std::string> overrides;  // "NAME=VALUE" for the graph's parameters (--set)
 };
 
 // Starts every process of the graph as its own child process, prefixes and forwards their
-// output, ends the run when `until_exit_of` exits, the time limit passes or SIGINT/SIGTERM
-// arrives, then stops the rest with SIGTERM (SIGKILL after the grace period).
+// output, ends the run when `until_exit_of` exits, a process exits with code 2 (bad input),
+// the time limit passes or SIGINT/SIGTERM arrives, then stops the rest with SIGTERM (SIGKILL
+// after the grace period). Throws InputError for a bad --set.
 std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOptions& options,
                                     std::ostream& out);
 
