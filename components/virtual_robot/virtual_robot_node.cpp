@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/units.h"
@@ -204,6 +205,7 @@ class VirtualRobotNode : public runtime::ProcessNode {
     if (now - last_wheels_ns_ > wheel_timeout_s_ * 1e9) left_ftps_ = right_ftps_ = 0.0;
     const double step_s = (now - last_step_ns_) * 1e-9 * rtf_;
     sim_->Step(step_s, left_ftps_, right_ftps_);
+    LogMotionChange(now);
     max_step_s_ = std::max(max_step_s_, step_s);
     last_step_ns_ = now;
     const SimTruth t = sim_->Truth();
@@ -219,6 +221,16 @@ class VirtualRobotNode : public runtime::ProcessNode {
       max_offset_in_ = std::max(max_offset_in_, std::abs(t.lateral_offset_in));
       max_heading_deg_ = std::max(max_heading_deg_, std::abs(RadToDeg(t.heading_error_rad)));
     }
+  }
+
+  // The base starting and coming to rest, on the wall clock (seconds since the Unix epoch),
+  // so a run's log shows when the robot really stopped (e.g. after its link was cut).
+  void LogMotionChange(int64_t now_ns) {
+    const bool moving = std::max(std::abs(left_ftps_), std::abs(right_ftps_)) > kAtRestFtps;
+    if (moving == moving_) return;
+    moving_ = moving;
+    ctx_->log->info("truth: base {} at wall clock {:.3f} s", moving ? "moving" : "at rest",
+                    now_ns * 1e-9);
   }
 
   void PublishEncoders() {
@@ -278,6 +290,8 @@ class VirtualRobotNode : public runtime::ProcessNode {
   uint64_t frames_ = 0, scans_ = 0;
   double max_step_s_ = 0.0, sim_period_s_ = 0.02, camera_rate_hz_ = 5.0;
   int collisions_ = 0;
+  static constexpr double kAtRestFtps = 0.01;
+  bool moving_ = false;
   double max_offset_in_ = 0.0, max_heading_deg_ = 0.0;
   std::unique_ptr<map::Map> map_;
   std::string start_check_;
