@@ -28,6 +28,12 @@ int main(int argc, char** argv) {
   echo->add_option("--count", o.count, "stop after this many samples")->check(CLI::NonNegativeNumber);
   echo->add_option("--timeout", o.timeout_s, "give up after this many seconds")
       ->check(CLI::NonNegativeNumber);
+  CLI::App* bw = app.add_subcommand(
+      "bw", "samples, rate and serialized bytes/s of every topic that has a writer");
+  bw->add_option("--wait", o.wait_s, "seconds to listen to discovery first")
+      ->check(CLI::PositiveNumber);
+  bw->add_option("--duration", o.timeout_s, "seconds to measure (default 10)")
+      ->check(CLI::PositiveNumber);
   CLI::App* goal = app.add_subcommand(
       "goal", "send a goal on mission/goal and print the executive's answer");
   std::string target, goal_id = "console";
@@ -43,6 +49,7 @@ int main(int argc, char** argv) {
   stickrep::runtime::InstallSignalHandlers();
   try {
     if (*list) return stickrep::console::ListTopics(o, std::cout);
+    if (*bw) return stickrep::console::MeasureBandwidth(o, std::cout);
     if (*goal) return stickrep::console::SendGoal(o, goal_id, target, std::cout);
     return stickrep::console::EchoTopic(o, topic, std::cout);
   } catch (const stickrep::InputError& e) {

@@ -88,7 +88,84 @@ const std::map<std::string, EchoFactory>& EchoFactories() {
   return factories;
 }
 
+// Counts the samples and serialized bytes of one topic (`bw`).
+struct Traffic {
+  uint64_t samples = 0;
+  uint64_t bytes = 0;
+};
+using CountFactory = std::function<std::unique_ptr<runtime::Drainable>(
+    runtime::Participant&, runtime::Executor&, const std::string&, Traffic&)>;
+
+template <typename PubSubType>
+CountFactory Count() {
+  return [](runtime::Participant& p, runtime::Executor& ex, const std::string& topic,
+            Traffic& traffic) -> std::unique_ptr<runtime::Drainable> {
+    auto size_of = std::make_shared<PubSubType>();
+    return std::make_unique<runtime::Reader<PubSubType>>(
+        p, ex, topic, [&traffic, size_of](const typename PubSubType::type& m) {
+          traffic.samples++;
+          traffic.bytes += size_of->getSerializedSizeProvider(
+              const_cast<typename PubSubType::type*>(&m))();
+        });
+  };
+}
+
+const std::map<std::string, CountFactory>& CountFactories() {
+  static const std::map<std::string, CountFactory> factories = {
+      {"stickrep::msgs::SonarEcho", Count<msgs::SonarEchoPubSubType>()},
+      {"stickrep::msgs::SonarScan", Count<msgs::SonarScanPubSubType>()},
+      {"stickrep::msgs::Image", Count<msgs::ImagePubSubType>()},
+      {"stickrep::msgs::WheelCommand", Count<msgs::WheelCommandPubSubType>()},
+      {"stickrep::msgs::EncoderReading", Count<msgs::EncoderReadingPubSubType>()},
+      {"stickrep::msgs::MotionCommand", Count<msgs::MotionCommandPubSubType>()},
+      {"stickrep::msgs::MotionState", Count<msgs::MotionStatePubSubType>()},
+      {"stickrep::msgs::Odometry", Count<msgs::OdometryPubSubType>()},
+      {"stickrep::msgs::LandmarkObservation", Count<msgs::LandmarkObservationPubSubType>()},
+      {"stickrep::msgs::LocalizationPose", Count<msgs::LocalizationPosePubSubType>()},
+      {"stickrep::msgs::PoseHypotheses", Count<msgs::PoseHypothesesPubSubType>()},
+      {"stickrep::msgs::StickRepMap", Count<msgs::StickRepMapPubSubType>()},
+      {"stickrep::msgs::MissionGoal", Count<msgs::MissionGoalPubSubType>()},
+      {"stickrep::msgs::MissionStatus", Count<msgs::MissionStatusPubSubType>()},
+      {"stickrep::msgs::ComponentStatus", Count<msgs::ComponentStatusPubSubType>()},
+      {"stickrep::msgs::GroundTruth", Count<msgs::GroundTruthPubSubType>()},
+  };
+  return factories;
+}
+
 }  // namespace
+
+int MeasureBandwidth(const ConsoleOptions& o, std::ostream& out) {
+  Session s = Join(o);
+  runtime::Executor ex;
+  // Discovery first, so that every topic with a writer is subscribed from the start.
+  ex.Spin(runtime::KeepRunning(), runtime::Executor::Clock::now() +
+                                      std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                                          std::chrono::duration<double>(o.wait_s)));
+  std::map<std::string, Traffic> traffic;
+  std::vector<std::unique_ptr<runtime::Drainable>> readers;
+  for (const auto& t : runtime::Summarise(s.listener->Endpoints())) {
+    const auto factory = CountFactories().find(t.type);
+    if (t.writers == 0 || factory == CountFactories().end()) continue;
+    readers.push_back(factory->second(*s.participant, ex, t.topic, traffic[t.topic]));
+  }
+  const double window_s = o.timeout_s > 0.0 ? o.timeout_s : 10.0;
+  ex.Spin(runtime::KeepRunning(), runtime::Executor::Clock::now() +
+                                      std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                                          std::chrono::duration<double>(window_s)));
+  readers.clear();
+  fmt::print(out, "{:<26} {:>8} {:>8} {:>12} {:>12}   over {:g} s\n", "TOPIC", "SAMPLES", "HZ",
+             "MEAN BYTES", "BYTES/S", window_s);
+  double total = 0.0;
+  for (const auto& [topic, t] : traffic) {
+    const double rate = t.bytes / window_s;
+    total += rate;
+    fmt::print(out, "{:<26} {:>8} {:>8.1f} {:>12.0f} {:>12.0f}\n", topic, t.samples,
+               t.samples / window_s, t.samples ? double(t.bytes) / t.samples : 0.0, rate);
+  }
+  fmt::print(out, "{:<26} {:>8} {:>8} {:>12} {:>12.0f}   (serialized payload, no RTPS/UDP "
+             "headers)\n", "total", "", "", "", total);
+  return 0;
+}
 
 void PrintTopicTable(const std::vector<runtime::TopicSummary>& topics, std::ostream& out) {
   fmt::print(out, "{:<26} {:<36} {:>2} {:>2}  {:<11} {:<15} {:<11} {:<8} {:<9} {}\n", "TOPIC",

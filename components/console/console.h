@@ -29,6 +29,10 @@ int ListTopics(const ConsoleOptions& options, std::ostream& out);
 // `echo TOPIC`: one JSON line per sample until the count, the timeout or a signal.
 int EchoTopic(const ConsoleOptions& options, const std::string& topic, std::ostream& out);
 
+// `bw`: every topic that has a writer, subscribed for timeout_s (default 10 s) after
+// listening to discovery for wait_s: samples, rate, mean serialized size and bytes/s.
+int MeasureBandwidth(const ConsoleOptions& options, std::ostream& out);
+
 // `goal TARGET`: sends a goal (a door or node of the map, executive/route.h) on
 // mission/goal and waits up to timeout_s (default 10 s) for the executive to name it on
 // mission/status; prints that status. 0 when the goal was taken, 1 when refused or unanswered.

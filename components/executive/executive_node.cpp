@@ -188,11 +188,26 @@ class ExecutiveNode : public runtime::ProcessNode {
     }
   }
 
+  // While waiting: which processes, and whether discovery could find them at all.
+  std::string WaitingMessage() const {
+    std::string why = fmt::format("waiting for {}: not heard yet", fmt::join(mission_->Missing(), ", "));
+    const runtime::DiscoveryListener& d = ctx_->participant.discovery();
+    if (d.UsesServers() && d.ServersReached() == 0) {
+      why += "; no discovery server reached at " + ctx_->participant.servers_text();
+    }
+    return why;
+  }
+
   void PublishStatus(const std::string& message, const std::string& goal_id = "") {
     msgs::MissionStatus s;
     s.state(ToMsg(mission_->state()));
     s.goal_id(goal_id);
-    s.message(message.empty() ? mission_->last_message() : message);
+    std::string text = message.empty() ? mission_->last_message() : message;
+    if (message.empty() && mission_->state() == MissionState::kWaitingForComponents) {
+      text = WaitingMessage();
+      if (++waiting_reports_ % 10 == 5) ctx_->log->warn("{}", text);
+    }
+    s.message(text);
     if (status_->Publish(s, ctx_->now_ns())) ctx_->counters.CountOut();
   }
 
@@ -203,6 +218,7 @@ class ExecutiveNode : public runtime::ProcessNode {
   std::unique_ptr<runtime::Reader<msgs::OdometryPubSubType>> odometry_;
   std::unique_ptr<LinkMonitor> links_;
   bool localized_ = false;  // the localizer's latest status
+  int waiting_reports_ = 0;
   bool exit_when_localized_ = false;
   std::unique_ptr<runtime::Writer<msgs::MotionCommandPubSubType>> commands_;
   std::unique_ptr<runtime::Writer<msgs::MissionStatusPubSubType>> status_;

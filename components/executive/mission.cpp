@@ -44,6 +44,14 @@ void Mission::OnComponentActive(const std::string& name) {
   }
 }
 
+std::vector<std::string> Mission::Missing() const {
+  std::vector<std::string> out;
+  for (const std::string& c : config_.required_components) {
+    if (active_.count(c) == 0) out.push_back(c);
+  }
+  return out;
+}
+
 void Mission::OnMotionState(bool in_envelope, double now_s) {
   if (state_ != MissionState::kAligning) return;
   if (align_start_s_ < 0.0) align_start_s_ = now_s;

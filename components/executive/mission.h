@@ -82,6 +82,8 @@ class Mission {
   const std::string& goal_id() const { return goal_.goal_id; }
 
   MissionState state() const { return state_; }
+  // The required processes not heard from as active yet.
+  std::vector<std::string> Missing() const;
   const std::string& last_message() const { return message_; }
   MotionRequest Motion() const;
   // Transitions since the last call, oldest first.

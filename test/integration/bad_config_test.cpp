@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "integration/process_fixture.h"
 
 namespace stickrep::test {
@@ -86,6 +88,62 @@ TEST_F(BadConfigTest, EveryShippedConfigStartsAndStopsCleanly) {
     EXPECT_EQ(p->exit_code(), 0) << exe << "\n" << p->output();
     EXPECT_THAT(p->output(), HasSubstr("stopped:")) << exe;
   }
+}
+
+// Fast DDS XML profiles and discovery servers (the two-host deployment).
+std::unique_ptr<launch::ChildProcess> RunWithDeployment(const std::vector<std::string>& args) {
+  std::vector<std::string> argv{BinPath("stickrep-sonar"), "--domain", "31"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  if (std::find(argv.begin(), argv.end(), "--run-for") == argv.end()) {
+    argv.insert(argv.end(), {"--run-for", "5"});
+  }
+  return RunToEnd(argv);
+}
+
+TEST(BadDeploymentTest, MissingProfileFileExitsWithCode2) {
+  const auto p = RunWithDeployment({"--fastdds-profile", "/nonexistent/client.xml"});
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("/nonexistent/client.xml: no such Fast DDS XML profile file"));
+}
+
+TEST(BadDeploymentTest, MalformedProfileExitsWithCode2NamingTheLine) {
+  const std::string path = WriteTempFile(
+      "broken.xml", "<?xml version=\"1.0\"?>\n<dds>\n  <profiles>\n    <participant>\n</dds>\n");
+  const auto p = RunWithDeployment({"--fastdds-profile", path});
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("broken.xml:4: malformed XML"));
+}
+
+TEST(BadDeploymentTest, UnknownProfileNameExitsWithCode2) {
+  const auto p = RunWithDeployment(
+      {"--fastdds-profile", std::string(STICKREP_SOURCE_DIR) + "/deploy/fastdds/discovery_client.xml",
+       "--fastdds-profile-name", "stickrep_sever"});
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("key 'stickrep_sever': no participant profile with this name"));
+}
+
+TEST(BadDeploymentTest, MalformedServerAddressExitsWithCode2) {
+  const auto p = RunWithDeployment({"--discovery-server", "base-station:eleven"});
+  EXPECT_EQ(p->exit_code(), 2);
+  EXPECT_THAT(p->output(), HasSubstr("not a list of IPv4 discovery server addresses IP:PORT"));
+}
+
+TEST(BadDeploymentTest, UnreachableServerTheProcessRunsAndWarnsPeriodically) {
+  const auto p = RunWithDeployment({"--discovery-server", "10.255.255.1:11811", "--run-for", "7"});
+  EXPECT_EQ(p->exit_code(), 0) << p->output();
+  EXPECT_THAT(p->output(), HasSubstr("no discovery server reached at 10.255.255.1:11811 for 5 s"));
+}
+
+TEST(BadDeploymentTest, GraphWithABadProfileEndsTheRunWithCode2) {
+  const std::string graph = WriteTempFile(
+      "bad.launch.yaml",
+      "launch:\n  name: bad profile\n  max_duration_s: 60\n"
+      "  common_args: [--domain, \"31\", --fastdds-profile, /nonexistent/client.xml]\n"
+      "  processes:\n    - name: sonar\n      executable: stickrep-sonar\n"
+      "    - name: camera\n      executable: stickrep-camera\n");
+  const auto p = RunToEnd({BinPath("stickrep-launch"), graph});
+  EXPECT_EQ(p->exit_code(), 2) << p->output();
+  EXPECT_THAT(p->output(), HasSubstr("refused its input (exit code 2)"));
 }
 
 }  // namespace
