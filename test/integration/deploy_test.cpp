@@ -331,6 +331,10 @@ TEST_F(TwoHostDeployment, LinkCutOf60sStopsTheBaseWithoutGrowingMemoryAndTheMiss
   }
   ASSERT_TRUE(WaitFor([&] { return BaseSaid("back after"); }, 60.0)) << Outputs();
   EXPECT_TRUE(BaseSaid("-> LINK_LOST")) << Outputs();
+  ASSERT_TRUE(WaitFor([&] { return motion_.back().moving && motion_.back().t_s > restored; }, 60.0))
+      << "the robot did not move on after the link came back\n" << Outputs();
+  std::printf("[deploy] moving again %.3f s after the link was restored\n",
+              motion_.back().t_s - restored);
   std::smatch m;
   const std::string out = base_->output();
   ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(link to host 'robot' back after ([0-9.]+) s: ([^\n]*))")));
