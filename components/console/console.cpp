@@ -66,27 +66,6 @@ EchoFactory Echo() {
   };
 }
 
-const std::map<std::string, EchoFactory>& EchoFactories() {
-  static const std::map<std::string, EchoFactory> factories = {
-      {"stickrep::msgs::SonarEcho", Echo<msgs::SonarEchoPubSubType>()},
-      {"stickrep::msgs::SonarScan", Echo<msgs::SonarScanPubSubType>()},
-      {"stickrep::msgs::Image", Echo<msgs::ImagePubSubType>()},
-      {"stickrep::msgs::WheelCommand", Echo<msgs::WheelCommandPubSubType>()},
-      {"stickrep::msgs::EncoderReading", Echo<msgs::EncoderReadingPubSubType>()},
-      {"stickrep::msgs::MotionCommand", Echo<msgs::MotionCommandPubSubType>()},
-      {"stickrep::msgs::MotionState", Echo<msgs::MotionStatePubSubType>()},
-      {"stickrep::msgs::Odometry", Echo<msgs::OdometryPubSubType>()},
-      {"stickrep::msgs::LandmarkObservation", Echo<msgs::LandmarkObservationPubSubType>()},
-      {"stickrep::msgs::LocalizationPose", Echo<msgs::LocalizationPosePubSubType>()},
-      {"stickrep::msgs::PoseHypotheses", Echo<msgs::PoseHypothesesPubSubType>()},
-      {"stickrep::msgs::StickRepMap", Echo<msgs::StickRepMapPubSubType>()},
-      {"stickrep::msgs::MissionGoal", Echo<msgs::MissionGoalPubSubType>()},
-      {"stickrep::msgs::MissionStatus", Echo<msgs::MissionStatusPubSubType>()},
-      {"stickrep::msgs::ComponentStatus", Echo<msgs::ComponentStatusPubSubType>()},
-      {"stickrep::msgs::GroundTruth", Echo<msgs::GroundTruthPubSubType>()},
-  };
-  return factories;
-}
 
 // Counts the samples and serialized bytes of one topic (`bw`).
 struct Traffic {
@@ -110,26 +89,37 @@ CountFactory Count() {
   };
 }
 
-const std::map<std::string, CountFactory>& CountFactories() {
-  static const std::map<std::string, CountFactory> factories = {
-      {"stickrep::msgs::SonarEcho", Count<msgs::SonarEchoPubSubType>()},
-      {"stickrep::msgs::SonarScan", Count<msgs::SonarScanPubSubType>()},
-      {"stickrep::msgs::Image", Count<msgs::ImagePubSubType>()},
-      {"stickrep::msgs::WheelCommand", Count<msgs::WheelCommandPubSubType>()},
-      {"stickrep::msgs::EncoderReading", Count<msgs::EncoderReadingPubSubType>()},
-      {"stickrep::msgs::MotionCommand", Count<msgs::MotionCommandPubSubType>()},
-      {"stickrep::msgs::MotionState", Count<msgs::MotionStatePubSubType>()},
-      {"stickrep::msgs::Odometry", Count<msgs::OdometryPubSubType>()},
-      {"stickrep::msgs::LandmarkObservation", Count<msgs::LandmarkObservationPubSubType>()},
-      {"stickrep::msgs::LocalizationPose", Count<msgs::LocalizationPosePubSubType>()},
-      {"stickrep::msgs::PoseHypotheses", Count<msgs::PoseHypothesesPubSubType>()},
-      {"stickrep::msgs::StickRepMap", Count<msgs::StickRepMapPubSubType>()},
-      {"stickrep::msgs::MissionGoal", Count<msgs::MissionGoalPubSubType>()},
-      {"stickrep::msgs::MissionStatus", Count<msgs::MissionStatusPubSubType>()},
-      {"stickrep::msgs::ComponentStatus", Count<msgs::ComponentStatusPubSubType>()},
-      {"stickrep::msgs::GroundTruth", Count<msgs::GroundTruthPubSubType>()},
+// What the console can do with each StickRep type: one table, every type once.
+struct TypeSupport {
+  EchoFactory echo;
+  CountFactory count;
+};
+
+template <typename PubSubType>
+TypeSupport Support() {
+  return {Echo<PubSubType>(), Count<PubSubType>()};
+}
+
+const std::map<std::string, TypeSupport>& Types() {
+  static const std::map<std::string, TypeSupport> types = {
+      {"stickrep::msgs::SonarEcho", Support<msgs::SonarEchoPubSubType>()},
+      {"stickrep::msgs::SonarScan", Support<msgs::SonarScanPubSubType>()},
+      {"stickrep::msgs::Image", Support<msgs::ImagePubSubType>()},
+      {"stickrep::msgs::WheelCommand", Support<msgs::WheelCommandPubSubType>()},
+      {"stickrep::msgs::EncoderReading", Support<msgs::EncoderReadingPubSubType>()},
+      {"stickrep::msgs::MotionCommand", Support<msgs::MotionCommandPubSubType>()},
+      {"stickrep::msgs::MotionState", Support<msgs::MotionStatePubSubType>()},
+      {"stickrep::msgs::Odometry", Support<msgs::OdometryPubSubType>()},
+      {"stickrep::msgs::LandmarkObservation", Support<msgs::LandmarkObservationPubSubType>()},
+      {"stickrep::msgs::LocalizationPose", Support<msgs::LocalizationPosePubSubType>()},
+      {"stickrep::msgs::PoseHypotheses", Support<msgs::PoseHypothesesPubSubType>()},
+      {"stickrep::msgs::StickRepMap", Support<msgs::StickRepMapPubSubType>()},
+      {"stickrep::msgs::MissionGoal", Support<msgs::MissionGoalPubSubType>()},
+      {"stickrep::msgs::MissionStatus", Support<msgs::MissionStatusPubSubType>()},
+      {"stickrep::msgs::ComponentStatus", Support<msgs::ComponentStatusPubSubType>()},
+      {"stickrep::msgs::GroundTruth", Support<msgs::GroundTruthPubSubType>()},
   };
-  return factories;
+  return types;
 }
 
 }  // namespace
@@ -144,9 +134,9 @@ int MeasureBandwidth(const ConsoleOptions& o, std::ostream& out) {
   std::map<std::string, Traffic> traffic;
   std::vector<std::unique_ptr<runtime::Drainable>> readers;
   for (const auto& t : runtime::Summarise(s.listener->Endpoints())) {
-    const auto factory = CountFactories().find(t.type);
-    if (t.writers == 0 || factory == CountFactories().end()) continue;
-    readers.push_back(factory->second(*s.participant, ex, t.topic, traffic[t.topic]));
+    const auto type = Types().find(t.type);
+    if (t.writers == 0 || type == Types().end()) continue;
+    readers.push_back(type->second.count(*s.participant, ex, t.topic, traffic[t.topic]));
   }
   const double window_s = o.timeout_s > 0.0 ? o.timeout_s : 10.0;
   ex.Spin(runtime::KeepRunning(), runtime::Executor::Clock::now() +
@@ -225,14 +215,14 @@ int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& o
     fmt::print(stderr, "no writer of {} appeared\n", topic);
     return 1;
   }
-  const auto factory = EchoFactories().find(type);
-  if (factory == EchoFactories().end()) {
+  const auto support = Types().find(type);
+  if (support == Types().end()) {
     fmt::print(stderr, "{} carries {}, a type this console cannot print\n", topic, type);
     return 1;
   }
   runtime::Executor ex;
   int printed = 0;
-  auto reader = factory->second(*s.participant, ex, topic, out, printed);
+  auto reader = support->second.echo(*s.participant, ex, topic, out, printed);
   const auto until = o.timeout_s > 0.0
                          ? runtime::Executor::Clock::now() +
                                std::chrono::duration_cast<runtime::Executor::Clock::duration>(
