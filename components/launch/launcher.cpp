@@ -54,22 +54,10 @@ bool Reap(Child& c) {
   return true;
 }
 
-}  // namespace
-
-std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOptions& options,
-                                    std::ostream& out) {
-  struct sigaction sa {};
-  sa.sa_handler = OnSignal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  signal(SIGPIPE, SIG_IGN);
-
+// Starts every process of the graph with its arguments, the graph's parameters substituted.
+std::vector<Child> StartChildren(const LaunchGraph& graph, const LaunchOptions& options) {
   const auto values = PlaceholderValues(graph, options.config_dir, options.overrides);
-  size_t width = 0;
-  for (const ProcessSpec& p : graph.processes) width = std::max(width, p.name.size());
   std::vector<Child> children;
-  const auto started = std::chrono::steady_clock::now();
   for (const ProcessSpec& p : graph.processes) {
     std::vector<std::string> args{FindExecutable(p.executable, options.bin_dir)};
     for (const std::string& a : p.args) args.push_back(SubstitutePlaceholders(a, values));
@@ -87,6 +75,24 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
       std::this_thread::sleep_for(std::chrono::duration<double>(graph.start_spacing_s));
     }
   }
+  return children;
+}
+
+}  // namespace
+
+std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOptions& options,
+                                    std::ostream& out) {
+  struct sigaction sa {};
+  sa.sa_handler = OnSignal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  size_t width = 0;
+  for (const ProcessSpec& p : graph.processes) width = std::max(width, p.name.size());
+  std::vector<Child> children = StartChildren(graph, options);
+  const auto started = std::chrono::steady_clock::now();
   fmt::print(out, "started {} processes of '{}'\n", children.size(), graph.name);
 
   std::string ended_by;

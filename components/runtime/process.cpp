@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
 #include "runtime/deployment_options.h"
@@ -47,30 +48,56 @@ int64_t WallClockNowNs() {
       .count();
 }
 
-int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory& make_node) {
-  CLI::App app{"StickRep " + name + " process"};
-  std::string system_file = DefaultConfigDir() + "/system.yaml";
-  std::string config_file = DefaultConfigDir() + "/" + name + ".yaml";
+namespace {
+
+// A process's command line.
+struct ProcessOptions {
+  std::string system_file;
+  std::string config_file;
   int domain_override = -1;
   double run_for_s = 0.0;
   std::string log_level;
-  app.add_option("--system", system_file, "deployment settings (domain, QoS file, map, robot)");
-  app.add_option("--config", config_file, "this process's settings (top-level key '" + name + "')");
-  app.add_option("--domain", domain_override, "DDS domain id, overriding the system file")
-      ->check(CLI::Range(0, 232));
-  app.add_option("--run-for", run_for_s, "stop by itself after this many seconds (0: run until "
-                                         "SIGINT/SIGTERM)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--log-level", log_level, "trace, debug, info, warn or error")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   DeploymentOptions deployment;
-  AddDeploymentOptions(app, deployment);
+};
+
+// Parses the command line; an exit code when the process must end at once (--help: 0, a
+// bad command line: 2).
+std::optional<int> ParseProcessOptions(int argc, char** argv, const std::string& name,
+                                       ProcessOptions& o) {
+  CLI::App app{"StickRep " + name + " process"};
+  o.system_file = DefaultConfigDir() + "/system.yaml";
+  o.config_file = DefaultConfigDir() + "/" + name + ".yaml";
+  app.add_option("--system", o.system_file, "deployment settings (domain, QoS file, map, robot)");
+  app.add_option("--config", o.config_file,
+                 "this process's settings (top-level key '" + name + "')");
+  app.add_option("--domain", o.domain_override, "DDS domain id, overriding the system file")
+      ->check(CLI::Range(0, 232));
+  app.add_option("--run-for", o.run_for_s, "stop by itself after this many seconds (0: run "
+                                           "until SIGINT/SIGTERM)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--log-level", o.log_level, "trace, debug, info, warn or error")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  AddDeploymentOptions(app, o.deployment);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kExitBadInput;
   }
+  return std::nullopt;
+}
+
+}  // namespace
+
+int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory& make_node) {
+  ProcessOptions options;
+  if (const auto code = ParseProcessOptions(argc, argv, name, options)) return *code;
+  const std::string& system_file = options.system_file;
+  const std::string& config_file = options.config_file;
+  const int domain_override = options.domain_override;
+  const double run_for_s = options.run_for_s;
+  const std::string& log_level = options.log_level;
+  const DeploymentOptions& deployment = options.deployment;
 
   auto log = spdlog::stderr_color_mt(name);
   log->set_pattern("%H:%M:%S.%e [%n] %^%l%$ %v");
