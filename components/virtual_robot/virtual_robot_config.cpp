@@ -45,21 +45,45 @@ VirtualRobotConfig LoadVirtualRobotConfig(const StrictYaml& c) {
   return out;
 }
 
-StartPlacement DrawStart(const VirtualRobotConfig& config, const map::Ring& ring) {
+StartPlacement DrawStart(const VirtualRobotConfig& config, const map::Ring& ring, int attempt) {
+  // Attempt 0 draws from the seed itself, so a seed's start does not depend on redraws.
+  const std::uint64_t seed =
+      config.seed + static_cast<std::uint64_t>(attempt) * 0x9E3779B97F4A7C15ull;
   StartPlacement s;
   s.ring_position_in = config.start_offset_in;
   if (s.ring_position_in < 0.0) {
     double length_in = 0.0;
     for (const map::Edge& e : ring.edges) length_in += e.metric_in;
-    std::mt19937_64 pick(config.seed);
+    std::mt19937_64 pick(seed);
     s.ring_position_in = std::uniform_real_distribution<double>(0.0, length_in)(pick);
   }
-  std::mt19937_64 pose_pick(config.seed ^ 0x5DEECE66Dull);
+  std::mt19937_64 pose_pick(seed ^ 0x5DEECE66Dull);
   const double max_offset = config.start_lateral_offset_max_in;
   const double max_heading = config.start_heading_error_max_deg;
   s.lateral_offset_in = std::uniform_real_distribution<double>(-max_offset, max_offset)(pose_pick);
   s.heading_error_deg = std::uniform_real_distribution<double>(-max_heading, max_heading)(pose_pick);
   return s;
+}
+
+PlacedRobot PlaceRobot(const map::Map& map, const sensing::RobotConfig& robot,
+                       const VirtualRobotConfig& config, int ring) {
+  PlacedRobot placed;
+  for (int attempt = 0;; ++attempt) {
+    placed.start = DrawStart(config, map.ring(ring), attempt);
+    WorldSimConfig world = config.world;
+    world.start_lateral_offset_in = placed.start.lateral_offset_in;
+    world.start_heading_error_deg = placed.start.heading_error_deg;
+    try {
+      placed.sim = std::make_unique<WorldSim>(map, robot, world, placed.start.ring_position_in,
+                                              config.seed);
+      return placed;
+    } catch (const ImpossibleStart& e) {
+      if (attempt + 1 >= kMaxStartDraws) throw;
+      placed.redraws.push_back(e.what() + std::string(" at ") +
+                               std::to_string(placed.start.ring_position_in) +
+                               " in along the ring: drawn again");
+    }
+  }
 }
 
 bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth,

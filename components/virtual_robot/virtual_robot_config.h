@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "common/strict_yaml.h"
 #include "stickrep/map.h"
@@ -39,7 +41,22 @@ struct StartPlacement {
   double lateral_offset_in = 0.0;
   double heading_error_deg = 0.0;
 };
-StartPlacement DrawStart(const VirtualRobotConfig& config, const map::Ring& ring);
+// `attempt` 0 is the seed's own draw; a start found impossible is drawn again with the next
+// attempt (PlaceRobot).
+StartPlacement DrawStart(const VirtualRobotConfig& config, const map::Ring& ring,
+                         int attempt = 0);
+
+// The simulated world with the robot at a drawn start. A start that puts the base against a
+// wall is drawn again (up to kMaxStartDraws times, each refusal kept in `redraws`); after
+// that the last ImpossibleStart is thrown.
+struct PlacedRobot {
+  std::unique_ptr<WorldSim> sim;
+  StartPlacement start;
+  std::vector<std::string> redraws;
+};
+inline constexpr int kMaxStartDraws = 20;
+PlacedRobot PlaceRobot(const map::Map& map, const sensing::RobotConfig& robot,
+                       const VirtualRobotConfig& config, int ring);
 
 // Whether a localized pose (ring id, edge, travel direction) names where the robot truly
 // is: the same ring and direction, and the true edge or a neighbour (the pose may be

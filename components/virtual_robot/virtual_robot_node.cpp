@@ -35,7 +35,7 @@ class VirtualRobotNode : public runtime::ProcessNode {
     ctx_ = &ctx;
     const VirtualRobotConfig config = LoadVirtualRobotConfig(ctx.config);
     const std::uint64_t seed = config.seed;
-    WorldSimConfig world = config.world;
+    const WorldSimConfig& world = config.world;
     rtf_ = config.real_time_factor;
     wheel_timeout_s_ = config.wheel_command_timeout_s;
     kidnap_after_s_ = config.kidnap_after_localized_s;
@@ -50,13 +50,13 @@ class VirtualRobotNode : public runtime::ProcessNode {
       ctx.config.Fail("ring_id", "no ring '" + world.ring_id + "' in " + ctx.system.map_file);
     }
     // Off the axis and turned from it, so aligning and centring (A3, A4) has work to do.
-    const StartPlacement start = DrawStart(config, map.ring(ring));
+    PlacedRobot placed = PlaceRobot(map, robot, config, ring);
+    for (const std::string& r : placed.redraws) ctx.log->warn("{}", r);
+    const StartPlacement start = placed.start;
     const double start_in = start.ring_position_in;
-    world.start_lateral_offset_in = start.lateral_offset_in;
-    world.start_heading_error_deg = start.heading_error_deg;
     const double max_offset_in = config.start_lateral_offset_max_in;
     const double max_heading_deg = config.start_heading_error_max_deg;
-    sim_ = std::make_unique<WorldSim>(map, robot, world, start_in, seed);
+    sim_ = std::move(placed.sim);
     const SimTruth t = sim_->Truth();
     start_check_ = fmt::format(
         "start ring '{}' edge {} + {:.1f} in, {:+.1f} in off the axis, heading {:+.1f} deg "

@@ -99,7 +99,7 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   X_WR_ = world::Pose2d{p.x(), p.y(),
                         WrapPi(X_WR_.theta_rad + DegToRad(config.start_heading_error_deg))};
   if (Clearance(X_WR_.position()) < footprint_radius_in_) {
-    throw std::invalid_argument("the start pose (" + std::to_string(config.start_lateral_offset_in) +
+    throw ImpossibleStart("the start pose (" + std::to_string(config.start_lateral_offset_in) +
                                 " in off the hallway axis) puts the base against a wall");
   }
 }

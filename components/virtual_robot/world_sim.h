@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -79,10 +80,16 @@ struct SimTruth {
 // outline of the base). A step that would bring it into a wall, door leaf or frame of the
 // scene (or deeper into one) is not taken: the base stalls there, its wheels do not turn,
 // and the contact is counted. Steps that leave the wall are taken.
+// A start pose that puts the base against a wall: the start can be drawn again.
+class ImpossibleStart : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 class WorldSim {
  public:
-  // Throws std::invalid_argument for an unknown ring or a start pose that touches a wall;
-  // InputError comes from the configs.
+  // Throws ImpossibleStart for a start pose that touches a wall, std::invalid_argument for an
+  // unknown ring; InputError comes from the configs.
   WorldSim(const map::Map& map, const sensing::RobotConfig& robot, const WorldSimConfig& config,
            double start_offset_in, std::uint64_t seed);
 

@@ -43,6 +43,8 @@ Summary Summarize(const std::vector<RunResult>& results) {
   s.runs = static_cast<int>(results.size());
   for (const RunResult& r : results) {
     s.collisions += r.collisions;
+    s.endings[r.ending()]++;
+    s.start_redraws += static_cast<int>(r.start_redraws.size());
     s.max_offset_in = std::max(s.max_offset_in, r.max_offset_in);
     s.max_heading_deg = std::max(s.max_heading_deg, r.max_heading_deg);
     if (r.kidnapped) {
@@ -68,10 +70,11 @@ Summary Summarize(const std::vector<RunResult>& results) {
 std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& options) {
   std::vector<RunResult> results(static_cast<size_t>(options.runs));
   std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
   auto worker = [&] {
     for (int i = next++; i < options.runs; i = next++) {
+      // One run that cannot be run is recorded as failed; the batch goes on.
+      RunResult& result = results[static_cast<size_t>(i)];
+      result.seed = options.first_seed + static_cast<std::uint64_t>(i);
       try {
         RunOptions run;
         run.seed = options.first_seed + static_cast<std::uint64_t>(i);
@@ -81,17 +84,16 @@ std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& option
         run.trace = options.trace;
         run.measure_ft = options.measure_ft;
         if (!options.rings.empty()) run.ring_id = options.rings[i % options.rings.size()];
-        results[static_cast<size_t>(i)] = RunWhereAmI(setup, run);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
+        result = RunWhereAmI(setup, run);
+      } catch (const std::exception& e) {
+        result.failed = true;
+        result.ended = std::string("failed: ") + e.what();
       }
     }
   };
   std::vector<std::thread> pool;
   for (int k = 0; k < std::max(1, options.threads); ++k) pool.emplace_back(worker);
   for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
   return results;
 }
 
@@ -193,7 +195,11 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
     const std::vector<RunResult> results = RunSeeds(setup, options);
     nlohmann::json runs = nlohmann::json::array();
     for (const RunResult& r : results) {
-      out << fmt::format("seed {:>4}  start {}\n            {}", r.seed, r.start, Describe(r.first));
+      out << fmt::format("seed {:>4}  start {}\n", r.seed, r.failed ? "-" : r.start);
+      for (const std::string& redraw : r.start_redraws) {
+        out << "            start " << redraw << "\n";
+      }
+      out << fmt::format("            {}: {}", ToString(r.ending()), Describe(r.first));
       if (r.kidnapped) {
         out << fmt::format("\n            kidnapped: {}; then {}",
                            r.lost_detected
@@ -222,7 +228,9 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
                       {"max_offset_in", r.max_offset_in},
                       {"max_heading_deg", r.max_heading_deg},
                       {"sim_s", r.sim_s},
-                      {"ended", r.ended}});
+                      {"ended", r.ended},
+                      {"ending", ToString(r.ending())},
+                      {"start_redraws", r.start_redraws}});
     }
     const Summary s = Summarize(results);
     out << fmt::format(
@@ -230,6 +238,14 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
         "corners after 20 ft: max |offset| {:.1f} in, max |heading error| {:.1f} deg\n",
         s.runs, s.localized, s.correct, 100.0 * s.correct / s.runs, s.collisions,
         s.max_offset_in, s.max_heading_deg);
+    std::vector<std::string> endings;
+    for (const Ending e : {Ending::kCorrect, Ending::kWrong, Ending::kNoneInTime,
+                           Ending::kCollision, Ending::kFailed}) {
+      const auto it = s.endings.find(e);
+      endings.push_back(fmt::format("{} {}", it == s.endings.end() ? 0 : it->second, ToString(e)));
+    }
+    out << fmt::format("endings: {}; {} starts against a wall drawn again\n",
+                       fmt::join(endings, ", "), s.start_redraws);
     if (s.kidnapped > 0) {
       out << fmt::format("kidnapped {}: LOST detected {}, recovered correctly {}\n", s.kidnapped,
                          s.lost_detected, s.recovered_correct);

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <ostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,8 @@ struct Summary {
   int lost_detected = 0;
   int recovered_correct = 0;      // after the kidnap
   int collisions = 0;
+  std::map<Ending, int> endings;  // runs by how they ended
+  int start_redraws = 0;          // starts refused and drawn again, over all runs
   double max_offset_in = 0.0;
   double max_heading_deg = 0.0;
 };

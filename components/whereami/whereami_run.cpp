@@ -80,6 +80,24 @@ RunSetup LoadRunSetup(const std::string& config_dir, const std::string& map_file
   return s;
 }
 
+const char* ToString(Ending ending) {
+  switch (ending) {
+    case Ending::kCorrect: return "correct";
+    case Ending::kWrong: return "wrong";
+    case Ending::kNoneInTime: return "none in time";
+    case Ending::kCollision: return "collision";
+    case Ending::kFailed: return "failed";
+  }
+  return "?";
+}
+
+Ending RunResult::ending() const {
+  if (failed) return Ending::kFailed;
+  if (collisions > 0) return Ending::kCollision;
+  if (!first) return Ending::kNoneInTime;
+  return first->correct ? Ending::kCorrect : Ending::kWrong;
+}
+
 RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   const map::Map& map = *setup.map;
   const sensing::RobotConfig& robot = setup.robot;
@@ -89,11 +107,8 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   const bool measuring = options.measure_ft > 0.0;
   const int ring = vr.world.ring_id.empty() ? 0 : map.FindRing(vr.world.ring_id);
   if (ring < 0) throw std::invalid_argument("no ring '" + vr.world.ring_id + "' in the map");
-  const virtual_robot::StartPlacement start = virtual_robot::DrawStart(vr, map.ring(ring));
-  virtual_robot::WorldSimConfig world = vr.world;
-  world.start_lateral_offset_in = start.lateral_offset_in;
-  world.start_heading_error_deg = start.heading_error_deg;
-  virtual_robot::WorldSim sim(map, robot, world, start.ring_position_in, vr.seed);
+  virtual_robot::PlacedRobot placed = virtual_robot::PlaceRobot(map, robot, vr, ring);
+  virtual_robot::WorldSim& sim = *placed.sim;
 
   const sonar::SonarGateConfig gate = sonar::GateConfigFor(robot);
   locomotion::HallwayBehaviour behaviour(setup.locomotion.behaviour);
@@ -114,6 +129,7 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
 
   RunResult result;
   result.seed = vr.seed;
+  result.start_redraws = placed.redraws;
   {
     const virtual_robot::SimTruth t = sim.Truth();
     result.start = fmt::format("ring '{}' edge {} + {:.1f} in, {:+.1f} in off the axis, heading "

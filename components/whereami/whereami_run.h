@@ -75,9 +75,15 @@ struct Recovery {
   double time_s = 0.0;       // simulated, since the start (or the kidnap)
 };
 
+// How a run ended. A run that touched a wall counts as a collision whatever else happened;
+// a run that could not be run (e.g. no possible start) as failed.
+enum class Ending { kCorrect, kWrong, kNoneInTime, kCollision, kFailed };
+const char* ToString(Ending ending);
+
 struct RunResult {
   std::uint64_t seed = 0;
   std::string start;  // where the run started, in words
+  std::vector<std::string> start_redraws;  // starts refused (against a wall) and drawn again
   std::optional<Recovery> first;
   bool kidnapped = false;
   bool lost_detected = false;       // the localizer turned LOST after the kidnap
@@ -96,6 +102,9 @@ struct RunResult {
   std::string true_trace;
   // With RunOptions::measure_ft: the assembled edges against the truth, from 20 ft on.
   EdgeErrorCounts errors;
+  bool failed = false;              // the run could not be run; `ended` says why
+
+  Ending ending() const;
 };
 
 RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options);
