@@ -225,7 +225,7 @@ std::set<std::string> CatalogTopics() {
 }
 
 TEST_F(TwoHostDeployment, ConsoleSeesEveryTopicLinkCutOf3sStopsTheBaseAndTheMissionContinues) {
-  SetUpHosts("sxdep3", 233, 27);
+  SetUpHosts("sxdep3", 233, 41);
   StartGraphs();
   WaitUntilTravelling();
   // What the link carries while the robot travels (frames stay on the robot).
@@ -274,7 +274,7 @@ TEST_F(TwoHostDeployment, ConsoleSeesEveryTopicLinkCutOf3sStopsTheBaseAndTheMiss
 }
 
 TEST_F(TwoHostDeployment, DiscoveryServerKilledPeersAlreadyDiscoveredKeepTalking) {
-  SetUpHosts("sxdepsrv", 235, 29);
+  SetUpHosts("sxdepsrv", 235, 43);
   StartGraphs();
   WaitUntilTravelling();
   const auto servers = PidsOf("base", "fast-discovery");
@@ -303,7 +303,7 @@ std::map<int, long> RssKb(const std::string& ns) {
 }
 
 TEST_F(TwoHostDeployment, LinkCutOf60sStopsTheBaseWithoutGrowingMemoryAndTheMissionResumes) {
-  SetUpHosts("sxdep60", 234, 28);
+  SetUpHosts("sxdep60", 234, 42);
   StartGraphs();
   WaitUntilTravelling();
   std::map<int, long> at_20s, at_55s;
