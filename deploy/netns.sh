@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Two test hosts on one machine: network namespaces NAME-base (base station, 10.NET.0.1)
 # and NAME-robot (robot, 10.NET.0.2) joined by a veth pair NAME-b <-> NAME-r, with loopback
-# up and no route but the link's own /24 (so no multicast route) and multicast off on the
-# link. Needs root (ip netns).
+# up, no route but the link's own /24 (so no multicast route), multicast off on the link,
+# and every multicast datagram dropped in and out by an nftables rule on both hosts (a
+# sender that names its interface passes the routing table; the rule stops it too). Needs
+# root (ip netns) and nft (Debian's nftables).
 #
 #   deploy/netns.sh up NAME NET      create (removes leftovers of the same NAME first)
 #   deploy/netns.sh down NAME        remove both namespaces (and so the link)
@@ -29,6 +31,7 @@ case "$verb" in
   up)
     [ $# -eq 3 ] || usage
     net=$3
+    command -v nft > /dev/null || { echo "$0: nft not found (apt-get install nftables)" >&2; exit 2; }
     [[ "$net" =~ ^[0-9]+$ ]] && [ "$net" -le 255 ] || { echo "$0: NET '$net' is not 0-255" >&2; exit 2; }
     down
     ip netns add "$base"
@@ -43,8 +46,14 @@ case "$verb" in
       ip -n "$ns" link set lo up
       ip -n "$ns" link set "$if" multicast off
       ip -n "$ns" link set "$if" up
+      ip netns exec "$ns" nft -f - <<'NFT'
+table inet stickrep_no_multicast {
+  chain out { type filter hook output priority 0; ip daddr 224.0.0.0/4 drop; }
+  chain in { type filter hook input priority 0; ip daddr 224.0.0.0/4 drop; }
+}
+NFT
     done
-    echo "base station 10.$net.0.1 in netns $base, robot 10.$net.0.2 in netns $robot"
+    echo "base station 10.$net.0.1 in netns $base, robot 10.$net.0.2 in netns $robot; no multicast"
     ;;
   down) down ;;
   cut)

@@ -9,7 +9,8 @@ packages=(
   build-essential cmake pkg-config
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools   # Fast DDS 2.9 and its IDL compiler
   libopencv-dev libeigen3-dev libyaml-cpp-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libtinyxml2-dev iproute2
+  libgtest-dev libgmock-dev libbenchmark-dev libtinyxml2-dev
+  iproute2 nftables                                           # the deploy test's two hosts
   libcli11-dev libfmt-dev nlohmann-json3-dev libspdlog-dev
 )
 missing=()

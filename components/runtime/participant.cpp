@@ -74,7 +74,7 @@ dds::DataReaderQos ToDataReaderQos(const QosProfile& p, dds::DataReaderQos q) {
   return q;
 }
 
-void CheckProfileXml(const std::string& path) {
+std::string CheckProfileXml(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw InputError(path, 0, "", "no such Fast DDS XML profile file");
   }
@@ -83,9 +83,24 @@ void CheckProfileXml(const std::string& path) {
     throw InputError(path, doc.ErrorLineNum(), "",
                      std::string("malformed XML: ") + doc.ErrorStr());
   }
-  if (doc.RootElement() == nullptr || std::string(doc.RootElement()->Name()) != "dds") {
-    throw InputError(path, 1, "", "not a Fast DDS profile file (the root element must be <dds>)");
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  const std::string root_name = root == nullptr ? "" : root->Name();
+  if (root_name != "dds" && root_name != "profiles") {
+    throw InputError(path, 1, "",
+                     "not a Fast DDS profile file (the root element must be <dds> or <profiles>)");
   }
+  const tinyxml2::XMLElement* profiles =
+      root_name == "dds" ? root->FirstChildElement("profiles") : root;
+  for (const tinyxml2::XMLElement* p =
+           profiles == nullptr ? nullptr : profiles->FirstChildElement("participant");
+       p != nullptr; p = p->NextSiblingElement("participant")) {
+    const char* is_default = p->Attribute("is_default_profile");
+    const char* name = p->Attribute("profile_name");
+    if (is_default != nullptr && std::string(is_default) == "true" && name != nullptr) {
+      return name;
+    }
+  }
+  return "";
 }
 
 namespace {
@@ -117,18 +132,21 @@ std::string LocatorsText(const eprosima::fastdds::rtps::RemoteServerList_t& serv
 
 dds::DomainParticipantQos Participant::LoadQos() {
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  dds::DomainParticipantQos pqos = factory->get_default_participant_qos();
+  // Without a file: Fast DDS's defaults, whatever another participant of this process loaded.
+  dds::DomainParticipantQos pqos;
   if (!config_.profile_xml.empty()) {
-    CheckProfileXml(config_.profile_xml);
+    // Fast DDS 2.9 does not make a loaded file's default profile the factory's default, so
+    // the default participant profile is found here and asked for by name.
+    const std::string default_profile = CheckProfileXml(config_.profile_xml);
     if (factory->load_XML_profiles_file(config_.profile_xml) != ReturnCode_t::RETCODE_OK) {
       throw InputError(config_.profile_xml, 0, "",
                        "Fast DDS refused this XML profile file (its reason is logged above)");
     }
-    if (config_.profile_name.empty()) {
-      pqos = factory->get_default_participant_qos();  // the file's default profile, if any
-    } else if (factory->get_participant_qos_from_profile(config_.profile_name, pqos) !=
-               ReturnCode_t::RETCODE_OK) {
-      throw InputError(config_.profile_xml, 0, config_.profile_name,
+    const std::string name =
+        config_.profile_name.empty() ? default_profile : config_.profile_name;
+    if (!name.empty() &&
+        factory->get_participant_qos_from_profile(name, pqos) != ReturnCode_t::RETCODE_OK) {
+      throw InputError(config_.profile_xml, 0, name,
                        "no participant profile with this name in the XML file");
     }
   }

@@ -35,8 +35,9 @@ struct ParticipantConfig {
 };
 
 // Checks that a Fast DDS XML profile file exists and is well-formed XML; throws InputError
-// naming the file, the line and the parser's reason.
-void CheckProfileXml(const std::string& path);
+// naming the file, the line and the parser's reason. Returns the name of the file's default
+// participant profile (is_default_profile="true"), or "" if it has none.
+std::string CheckProfileXml(const std::string& path);
 
 // Owns one DomainParticipant with one Publisher and one Subscriber, and creates topics and
 // endpoints with the QoS that the catalog names for each topic. Not copyable; destroy it
