@@ -17,8 +17,8 @@ class EndpointTest : public ::testing::Test {
  protected:
   EndpointTest()
       : catalog_(QosCatalog::LoadFile(DefaultConfigDir() + "/qos.yaml")),
-        a_(ParticipantConfig{TestDomainId(), "test-a", "", ""}, catalog_),
-        b_(ParticipantConfig{TestDomainId(), "test-b", "", ""}, catalog_) {}
+        a_(ParticipantConfig{TestDomainId(), "test-a", "", "", {}}, catalog_),
+        b_(ParticipantConfig{TestDomainId(), "test-b", "", "", {}}, catalog_) {}
 
   // Spins the executor until `done` or the timeout; the condition is what passes the test.
   bool SpinUntil(Executor& ex, const std::function<bool()>& done, double timeout_s) {

@@ -79,11 +79,15 @@ class TwoHostDeployment : public ::testing::Test {
     return argv;
   }
 
-  void StartGraphs() {
+  // With `until_localized` the executive (and so the base station's graph) ends once the
+  // pose is recovered; else the mission holds there until the graphs are stopped.
+  void StartGraphs(bool until_localized = true) {
+    const std::string executive_config =
+        until_localized ? "deploy/configs/executive_until_localized.yaml" : "configs/executive.yaml";
     base_ = std::make_unique<launch::ChildProcess>(
         "base", InNs("base", {BinPath("stickrep-launch"), SourcePath("deploy/base_station.launch.yaml"),
                               "--domain", std::to_string(domain_), "--set",
-                              "executive_config=" + SourcePath("deploy/configs/executive_until_localized.yaml")}));
+                              "executive_config=" + SourcePath(executive_config)}));
     robot_ = std::make_unique<launch::ChildProcess>(
         "robot", InNs("robot", {BinPath("stickrep-launch"), SourcePath("deploy/robot.launch.yaml"),
                                 "--domain", std::to_string(domain_), "--set",
@@ -147,7 +151,9 @@ class TwoHostDeployment : public ::testing::Test {
     for (const auto& e : motion_) {
       if (e.t_s < cut) continue;
       if (rest < 0.0 && !e.moving) rest = e.t_s;
-      if (rest >= 0.0 && e.moving) EXPECT_GE(e.t_s, restored) << "moved while the link was cut";
+      if (rest >= 0.0 && e.moving) {
+        EXPECT_GE(e.t_s, restored) << "moved while the link was cut";
+      }
     }
     ASSERT_GE(rest, 0.0) << "the base never came to rest after the cut\n" << Outputs();
     EXPECT_LT(rest - cut, 1.0) << "stop time after the cut";
@@ -177,6 +183,26 @@ class TwoHostDeployment : public ::testing::Test {
     const double processed = std::stod(m[1]), unseen = std::stod(m[2]);
     std::printf("[deploy] landmark: %.0f frames processed, %.0f never seen\n", processed, unseen);
     EXPECT_LT(unseen / (processed + unseen), 0.02);
+  }
+
+  // The robot moves on once the link is back.
+  void ExpectMovingAgainAfter(double restored) {
+    ASSERT_TRUE(WaitFor([&] { return motion_.back().moving && motion_.back().t_s > restored; }, 60.0))
+        << "the robot did not move on after the link came back\n" << Outputs();
+    std::printf("[deploy] moving again %.3f s after the link was restored\n",
+                motion_.back().t_s - restored);
+  }
+
+  // What the executive said when the link came back, printed; false if it said nothing.
+  bool PrintLinkBack() {
+    std::smatch m;
+    const std::string out = base_->output();
+    if (!std::regex_search(out, m, std::regex(R"(link to host 'robot' back after ([0-9.]+) s: ([^\n]*))"))) {
+      return false;
+    }
+    std::printf("[deploy] executive: link back after %s s: %s\n", m[1].str().c_str(),
+                m[2].str().c_str());
+    return true;
   }
 
   // Bytes that crossed the link (both directions), from the veth's counters.
@@ -212,6 +238,14 @@ class TwoHostDeployment : public ::testing::Test {
   std::vector<MotionEvent> motion_;
 };
 
+// The console on the base station, through the discovery server (a super client).
+std::string ConsoleCommand(const std::string& ns, int domain) {
+  return "ip netns exec " + ns + "-base " + BinPath("stickrep-console") + " --domain " +
+         std::to_string(domain) + " --fastdds-profile " +
+         SourcePath("deploy/fastdds/discovery_client.xml") +
+         " --fastdds-profile-name stickrep_super_client --discovery-server 127.0.0.1:11811 ";
+}
+
 std::set<std::string> CatalogTopics() {
   std::set<std::string> topics;
   std::ifstream in(SourcePath("configs/qos.yaml"));
@@ -235,11 +269,7 @@ TEST_F(TwoHostDeployment, ConsoleSeesEveryTopicLinkCutOf3sStopsTheBaseAndTheMiss
   std::printf("[deploy] link traffic while travelling: %.0f bytes/s (both directions)\n", link_bps);
   EXPECT_LT(link_bps, 200e3) << "camera frames cross the link?";
   // The console on the base station, through the discovery server: every topic.
-  const std::string console = "ip netns exec " + name_ + "-base " + BinPath("stickrep-console") +
-                              " --domain " + std::to_string(domain_) + " --fastdds-profile " +
-                              SourcePath("deploy/fastdds/discovery_client.xml") +
-                              " --fastdds-profile-name stickrep_super_client"
-                              " --discovery-server 127.0.0.1:11811 ";
+  const std::string console = ConsoleCommand(name_, domain_);
   const auto [rc, listed] = Shell(console + "list --json --wait 3");
   ASSERT_EQ(rc, 0) << listed;
   std::set<std::string> seen;
@@ -263,17 +293,9 @@ TEST_F(TwoHostDeployment, ConsoleSeesEveryTopicLinkCutOf3sStopsTheBaseAndTheMiss
 
   const auto [cut, restored] = CutLink(3.0);
   ExpectStoppedDuring(cut, restored);
-  ASSERT_TRUE(WaitFor([&] { return motion_.back().moving && motion_.back().t_s > restored; }, 30.0))
-      << "the robot did not move on after the link came back\n" << Outputs();
-  std::printf("[deploy] moving again %.3f s after the link was restored\n",
-              motion_.back().t_s - restored);
+  ExpectMovingAgainAfter(restored);
   // A 3 s cut is about 1 s longer than the executive needs to call the link lost.
-  std::smatch m;
-  const std::string out = base_->output();
-  if (std::regex_search(out, m, std::regex(R"(link to host 'robot' back after ([0-9.]+) s: ([^\n]*))"))) {
-    std::printf("[deploy] executive: link back after %s s: %s\n", m[1].str().c_str(),
-                m[2].str().c_str());
-  } else {
+  if (!PrintLinkBack()) {
     EXPECT_FALSE(BaseSaid("-> LINK_LOST")) << "LINK_LOST without the link coming back\n" << Outputs();
     std::printf("[deploy] executive: the link loss was too short to be called\n");
   }
@@ -292,6 +314,28 @@ TEST_F(TwoHostDeployment, DiscoveryServerKilledPeersAlreadyDiscoveredKeepTalking
   ExpectCorrectPoseAndCleanEnd(1);
   EXPECT_NE(robot_->output().find("discovery server at " + base_ip_ + ":11811 lost"),
             std::string::npos) << Outputs();
+}
+
+TEST_F(TwoHostDeployment, ConsoleOnTheBaseStationEchoesEveryTopic) {
+  SetUpHosts("sxdepecho", 238, 44);
+  StartGraphs(/*until_localized=*/false);
+  WaitUntilTravelling();
+  const std::string console = ConsoleCommand(name_, domain_);
+  const auto [rc, listed] = Shell(console + "list --json --wait 3");
+  ASSERT_EQ(rc, 0) << listed;
+  // Landmarks first: they come only while the robot passes doors.
+  std::vector<std::string> written{"perception/landmark"};
+  for (const auto& t : nlohmann::json::parse(listed.substr(listed.find('[')))) {
+    const std::string topic = t.at("topic").get<std::string>();
+    if (t.at("writers").get<int>() > 0 && topic != written.front()) written.push_back(topic);
+  }
+  EXPECT_EQ(written.size(), CatalogTopics().size() - 1) << "every topic but mission/goal";
+  for (const std::string& t : written) {
+    const auto [echo_rc, echoed] = Shell(console + "echo " + t + " --count 1 --timeout 30");
+    EXPECT_EQ(echo_rc, 0) << t << ": " << echoed.substr(0, 2000);
+    EXPECT_NE(echoed.find("\"header\""), std::string::npos) << t << ": " << echoed.substr(0, 2000);
+  }
+  std::printf("[deploy] the console echoed one sample of each of %zu topics\n", written.size());
 }
 
 // Resident memory of every process of one namespace, kB by pid.
@@ -338,14 +382,8 @@ TEST_F(TwoHostDeployment, LinkCutOf60sStopsTheBaseWithoutGrowingMemoryAndTheMiss
   }
   ASSERT_TRUE(WaitFor([&] { return BaseSaid("back after"); }, 60.0)) << Outputs();
   EXPECT_TRUE(BaseSaid("-> LINK_LOST")) << Outputs();
-  ASSERT_TRUE(WaitFor([&] { return motion_.back().moving && motion_.back().t_s > restored; }, 60.0))
-      << "the robot did not move on after the link came back\n" << Outputs();
-  std::printf("[deploy] moving again %.3f s after the link was restored\n",
-              motion_.back().t_s - restored);
-  std::smatch m;
-  const std::string out = base_->output();
-  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(link to host 'robot' back after ([0-9.]+) s: ([^\n]*))")));
-  std::printf("[deploy] executive: link back after %s s: %s\n", m[1].str().c_str(), m[2].str().c_str());
+  ExpectMovingAgainAfter(restored);
+  EXPECT_TRUE(PrintLinkBack()) << Outputs();
   ExpectCorrectPoseAndCleanEnd();
 }
 

@@ -37,7 +37,7 @@ DomainLock::~DomainLock() {
 
 ProcessFixture::ProcessFixture(int domain_id) : domain_id_(domain_id), lock_(domain_id) {
   participant_ = std::make_unique<runtime::Participant>(
-      runtime::ParticipantConfig{domain_id, "stickrep-test", "", ""},
+      runtime::ParticipantConfig{domain_id, "stickrep-test", "", "", {}},
       runtime::QosCatalog::LoadFile(ConfigPath("qos.yaml")));
 }
 
