@@ -26,7 +26,7 @@ TEST(LauncherTest, RunEndsWhenTheNamedProcessExitsAndTheRestAreStopped) {
       RunGraph(Graph({{"quick", "sh", {"-c", "echo hello; echo 'x stopped: did it'"}},
                       {"slow", "sleep", {"20"}}},
                      "quick"),
-               LaunchOptions{"", "", {}, 5.0}, out);
+               LaunchOptions{"", "", {}, 5.0, {}}, out);
   ASSERT_EQ(results.size(), 2u);
   EXPECT_EQ(results[0].exit_code, 0);
   EXPECT_EQ(results[0].last_summary, "did it");
@@ -38,7 +38,7 @@ TEST(LauncherTest, RunEndsWhenTheNamedProcessExitsAndTheRestAreStopped) {
 TEST(LauncherTest, ExitCodesAreReported) {
   std::ostringstream out;
   const auto results = RunGraph(Graph({{"fails", "sh", {"-c", "exit 2"}}}, ""),
-                                LaunchOptions{"", "", {}, 5.0}, out);
+                                LaunchOptions{"", "", {}, 5.0, {}}, out);
   EXPECT_EQ(results[0].exit_code, 2);
   EXPECT_THAT(out.str(), HasSubstr("every process exited"));
 }
