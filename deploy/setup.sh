@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libtinyxml2-dev
   iproute2 nftables                                           # the deploy test's two hosts
   libcli11-dev libfmt-dev nlohmann-json3-dev libspdlog-dev
+  libsqlite3-dev                                              # recordings (components/bag)
 )
 missing=()
 for p in "${packages[@]}"; do
