@@ -19,9 +19,16 @@ ChildProcess::ChildProcess(std::string name, const std::vector<std::string>& arg
   if (argv.empty()) throw std::runtime_error("no program given for " + name_);
   int fds[2];
   if (pipe(fds) != 0) throw std::runtime_error("pipe() failed: " + std::string(strerror(errno)));
+  // Signals are blocked across fork(): a SIGTERM meant for the child that arrived before
+  // exec would otherwise run the parent's handler in the child and be lost. The child
+  // restores the default dispositions, then unblocks, so such a signal takes effect.
+  sigset_t all, previous;
+  sigfillset(&all);
+  sigprocmask(SIG_BLOCK, &all, &previous);
   pid_ = fork();
-  if (pid_ < 0) throw std::runtime_error("fork() failed: " + std::string(strerror(errno)));
   if (pid_ == 0) {
+    for (const int sig : {SIGINT, SIGTERM, SIGPIPE}) signal(sig, SIG_DFL);
+    sigprocmask(SIG_SETMASK, &previous, nullptr);
     dup2(fds[1], STDOUT_FILENO);
     dup2(fds[1], STDERR_FILENO);
     close(fds[0]);
@@ -33,6 +40,8 @@ ChildProcess::ChildProcess(std::string name, const std::vector<std::string>& arg
     std::fprintf(stderr, "cannot start %s: %s\n", args[0], strerror(errno));
     _exit(127);
   }
+  sigprocmask(SIG_SETMASK, &previous, nullptr);
+  if (pid_ < 0) throw std::runtime_error("fork() failed: " + std::string(strerror(errno)));
   close(fds[1]);
   fd_ = fds[0];
   fcntl(fd_, F_SETFL, O_NONBLOCK);

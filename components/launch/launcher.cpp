@@ -116,7 +116,9 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
     if (g_stop_requested) ended_by = "a stop was requested";
     if (std::all_of(children.begin(), children.end(),
                     [](const Child& c) { return c.process->Exited(); })) {
-      ended_by = "every process exited";
+      // Keeps the reason a process gave, when it gave one in the same round.
+      ended_by = ended_by.empty() ? "every process exited"
+                                  : "every process exited; " + ended_by;
     }
   }
   fmt::print(out, "ending the run: {}\n", ended_by);

@@ -92,12 +92,6 @@ std::optional<int> ParseProcessOptions(int argc, char** argv, const std::string&
 int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory& make_node) {
   ProcessOptions options;
   if (const auto code = ParseProcessOptions(argc, argv, name, options)) return *code;
-  const std::string& system_file = options.system_file;
-  const std::string& config_file = options.config_file;
-  const int domain_override = options.domain_override;
-  const double run_for_s = options.run_for_s;
-  const std::string& log_level = options.log_level;
-  const DeploymentOptions& deployment = options.deployment;
 
   auto log = spdlog::stderr_color_mt(name);
   log->set_pattern("%H:%M:%S.%e [%n] %^%l%$ %v");
@@ -109,24 +103,27 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
   Executor executor;
   SampleCounters counters(log);
   try {
-    system = std::make_unique<SystemConfig>(SystemConfig::LoadFile(system_file));
-    if (domain_override >= 0) system->domain_id = domain_override;
-    log->set_level(spdlog::level::from_str(log_level.empty() ? system->log_level : log_level));
+    system = std::make_unique<SystemConfig>(SystemConfig::LoadFile(options.system_file));
+    if (options.domain_override >= 0) system->domain_id = options.domain_override;
+    log->set_level(spdlog::level::from_str(options.log_level.empty() ? system->log_level
+                                                                     : options.log_level));
     QosCatalog catalog = QosCatalog::LoadFile(system->qos_file);
-    const StrictYaml config_root = StrictYaml::LoadFile(config_file);
+    const StrictYaml config_root = StrictYaml::LoadFile(options.config_file);
     const StrictYaml config = config_root.Child(name);
     config_root.Finish();
 
     participant = std::make_unique<Participant>(
-        MakeParticipantConfig(*system, deployment, "stickrep-" + name), std::move(catalog));
-    const std::string host = HostLabel(deployment);
+        MakeParticipantConfig(*system, options.deployment, "stickrep-" + name),
+        std::move(catalog));
+    const std::string host = HostLabel(options.deployment);
     StatusReporter status(*participant, name, host, counters);
     NodeContext ctx{name,   *participant, executor,       log,  *system,
                     config, counters,     WallClockNowNs, host, [] { KeepRunning() = false; }};
     node = make_node();
     node->Configure(ctx);
     status.Publish(StatusReporter::State::kInactive, "configured");
-    log->info("configured on domain {} on host '{}' ({})", system->domain_id, host, config_file);
+    log->info("configured on domain {} on host '{}' ({})", system->domain_id, host,
+              options.config_file);
     WatchDiscoveryServers(*participant, executor, log);
 
     node->Activate();
@@ -134,10 +131,10 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
     executor.AddTimer(kHeartbeatPeriodS,
                      [&] { status.Publish(StatusReporter::State::kActive, "active"); });
     log->info("active");
-    const auto until = run_for_s > 0.0
+    const auto until = options.run_for_s > 0.0
                            ? Executor::Clock::now() +
                                  std::chrono::duration_cast<Executor::Clock::duration>(
-                                     std::chrono::duration<double>(run_for_s))
+                                     std::chrono::duration<double>(options.run_for_s))
                            : Executor::Clock::time_point::max();
     executor.Spin(KeepRunning(), until);
 
