@@ -1,5 +1,6 @@
 #include "bag/bag_storage.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "common/input_error.h"
@@ -98,7 +99,14 @@ void BagWriter::Write(std::int64_t topic_id, std::int64_t timestamp_ns, std::int
   sqlite3_bind_int64(insert_, 2, timestamp_ns);
   sqlite3_bind_blob64(insert_, 3, data, size, SQLITE_TRANSIENT);
   sqlite3_bind_int64(insert_, 4, received_ns);
-  if (sqlite3_step(insert_) != SQLITE_DONE) Fail("cannot store a sample");
+  if (sqlite3_step(insert_) != SQLITE_DONE) {
+    // The open batch is lost (SQLite may already have rolled it back); what was committed
+    // before stays.
+    const std::string why = sqlite3_errmsg(db_);
+    sqlite3_exec(db_, "ROLLBACK;", nullptr, nullptr, nullptr);
+    in_batch_ = false;
+    throw InputError(path_, 0, "", "cannot store a sample (" + why + ")");
+  }
   written_++;
   if (std::chrono::duration<double>(std::chrono::steady_clock::now() - batch_start_).count() >=
       batch_s_) {
@@ -115,10 +123,24 @@ void BagWriter::SetMetadata(const std::string& key, const std::string& value) {
   if (sqlite3_step(s.s) != SQLITE_DONE) Fail("cannot write metadata " + key);
 }
 
+void BagWriter::SetSizeLimit(std::int64_t bytes) {
+  if (bytes <= 0) return;
+  Statement s;
+  sqlite3_prepare_v2(db_, "PRAGMA page_size", -1, &s.s, nullptr);
+  const std::int64_t page = sqlite3_step(s.s) == SQLITE_ROW ? sqlite3_column_int64(s.s, 0) : 4096;
+  Exec("PRAGMA max_page_count=" + std::to_string(std::max<std::int64_t>(1, bytes / page)) + ";");
+}
+
 void BagWriter::Flush() {
   if (!in_batch_) return;
   in_batch_ = false;
-  Exec("COMMIT;");
+  char* error = nullptr;
+  if (sqlite3_exec(db_, "COMMIT;", nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string message = error != nullptr ? error : "unknown error";
+    sqlite3_free(error);
+    sqlite3_exec(db_, "ROLLBACK;", nullptr, nullptr, nullptr);
+    throw InputError(path_, 0, "", "cannot commit a batch of samples (SQLite: " + message + ")");
+  }
 }
 
 BagReader::BagReader(const std::string& path) : path_(path) {
@@ -171,14 +193,27 @@ std::map<std::int64_t, std::int64_t> BagReader::Counts() const {
   return out;
 }
 
-void BagReader::ForEach(const std::function<bool(const Message&)>& fn) const {
+std::pair<std::int64_t, std::int64_t> BagReader::TimeRange() const {
+  Statement s;
+  if (sqlite3_prepare_v2(db_, "SELECT MIN(timestamp), MAX(timestamp) FROM messages", -1, &s.s,
+                         nullptr) != SQLITE_OK) {
+    Fail("not a StickRep recording (no messages table)");
+  }
+  if (sqlite3_step(s.s) != SQLITE_ROW) Fail(std::string("damaged: ") + sqlite3_errmsg(db_));
+  return {sqlite3_column_int64(s.s, 0), sqlite3_column_int64(s.s, 1)};
+}
+
+void BagReader::ForEach(const std::function<bool(const Message&)>& fn, std::int64_t from_ns,
+                        std::int64_t to_ns) const {
   Statement s;
   if (sqlite3_prepare_v2(db_,
                          "SELECT topic_id, timestamp, received_timestamp, data FROM messages "
-                         "ORDER BY timestamp, id",
+                         "WHERE timestamp >= ? AND timestamp <= ? ORDER BY timestamp, id",
                          -1, &s.s, nullptr) != SQLITE_OK) {
     Fail("not a StickRep recording (no messages table)");
   }
+  sqlite3_bind_int64(s.s, 1, from_ns);
+  sqlite3_bind_int64(s.s, 2, to_ns);
   int rc;
   Message m;
   while ((rc = sqlite3_step(s.s)) == SQLITE_ROW) {

@@ -11,6 +11,8 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <utility>
 #include <map>
 #include <string>
 #include <vector>
@@ -48,6 +50,9 @@ class BagWriter {
   void Write(std::int64_t topic_id, std::int64_t timestamp_ns, std::int64_t received_ns,
              const std::uint8_t* data, std::size_t size);
   void SetMetadata(const std::string& key, const std::string& value);
+  // Caps the file at about `bytes` (SQLite's max_page_count): past it a write fails as on a
+  // full disk. For testing that case; 0 leaves the file unbounded.
+  void SetSizeLimit(std::int64_t bytes);
   // Commits the open batch.
   void Flush();
   std::int64_t written() const { return written_; }
@@ -79,8 +84,14 @@ class BagReader {
   std::map<std::string, std::string> Metadata() const;
   // Samples per topic id.
   std::map<std::int64_t, std::int64_t> Counts() const;
-  // Every message in timestamp order (ties by id), to `fn`; stops early when it returns false.
-  void ForEach(const std::function<bool(const Message&)>& fn) const;
+  // Every message with from_ns <= timestamp <= to_ns in timestamp order (ties by id), to
+  // `fn`; stops early when it returns false.
+  void ForEach(const std::function<bool(const Message&)>& fn,
+               std::int64_t from_ns = std::numeric_limits<std::int64_t>::min(),
+               std::int64_t to_ns = std::numeric_limits<std::int64_t>::max()) const;
+  // The first and last message timestamps; {0, 0} for a recording without messages.
+  std::pair<std::int64_t, std::int64_t> TimeRange() const;
+  const std::string& path() const { return path_; }
 
  private:
   void Fail(const std::string& what) const;

@@ -12,8 +12,10 @@
 
 #include "common/input_error.h"
 #include "console/message_json.h"
+#include "console/message_types.h"
 #include "missionPubSubTypes.h"
 #include "runtime/endpoint.h"
+#include "runtime/raw_endpoint.h"
 #include "runtime/process.h"
 #include "runtime/system_config.h"
 
@@ -21,108 +23,60 @@ namespace stickrep::console {
 
 namespace {
 
-struct Session {
-  runtime::SystemConfig system;
-  std::unique_ptr<runtime::Participant> participant;
-  const runtime::DiscoveryListener* listener = nullptr;
-};
+using Session = DomainSession;
 
 Session Join(const ConsoleOptions& o) {
-  Session s;
-  s.system = runtime::SystemConfig::LoadFile(o.system_file);
-  if (o.domain_id >= 0) s.system.domain_id = o.domain_id;
-  s.participant = std::make_unique<runtime::Participant>(
-      runtime::MakeParticipantConfig(s.system, o.deployment, "stickrep-console"),
-      runtime::QosCatalog::LoadFile(s.system.qos_file));
-  s.listener = &s.participant->discovery();
-  if (s.listener->UsesServers()) {
-    // Discovery goes through the server: wait (bounded) until it is reached, then listen.
-    const bool reached = runtime::WaitFor(
-        [&] { return s.listener->ServersReached() > 0 || !runtime::KeepRunning().load(); },
-        std::max(5.0, o.wait_s));
-    if (!reached || s.listener->ServersReached() == 0) {
-      fmt::print(stderr, "stickrep-console: no discovery server reached at {}\n",
-                 s.participant->servers_text());
-    }
-  }
-  return s;
+  return JoinDomain(o.system_file, o.domain_id, o.deployment, "stickrep-console", o.wait_s);
 }
 
 std::string Seconds(double s) { return s <= 0.0 ? "-" : fmt::format("{:g} s", s); }
-
-// Makes a reader of `topic` that prints each sample as a JSON line.
-using EchoFactory = std::function<std::unique_ptr<runtime::Drainable>(
-    runtime::Participant&, runtime::Executor&, const std::string&, std::ostream&, int&)>;
-
-template <typename PubSubType>
-EchoFactory Echo() {
-  return [](runtime::Participant& p, runtime::Executor& ex, const std::string& topic,
-            std::ostream& out, int& printed) -> std::unique_ptr<runtime::Drainable> {
-    return std::make_unique<runtime::Reader<PubSubType>>(
-        p, ex, topic, [&out, &printed](const typename PubSubType::type& m) {
-          out << ToJson(m).dump() << '\n' << std::flush;
-          printed++;
-        });
-  };
-}
-
 
 // Counts the samples and serialized bytes of one topic (`bw`).
 struct Traffic {
   uint64_t samples = 0;
   uint64_t bytes = 0;
 };
-using CountFactory = std::function<std::unique_ptr<runtime::Drainable>(
-    runtime::Participant&, runtime::Executor&, const std::string&, Traffic&)>;
 
-template <typename PubSubType>
-CountFactory Count() {
-  return [](runtime::Participant& p, runtime::Executor& ex, const std::string& topic,
-            Traffic& traffic) -> std::unique_ptr<runtime::Drainable> {
-    auto size_of = std::make_shared<PubSubType>();
-    return std::make_unique<runtime::Reader<PubSubType>>(
-        p, ex, topic, [&traffic, size_of](const typename PubSubType::type& m) {
-          traffic.samples++;
-          traffic.bytes += size_of->getSerializedSizeProvider(
-              const_cast<typename PubSubType::type*>(&m))();
-        });
-  };
-}
-
-// What the console can do with each StickRep type: one table, every type once.
-struct TypeSupport {
-  EchoFactory echo;
-  CountFactory count;
-};
-
-template <typename PubSubType>
-TypeSupport Support() {
-  return {Echo<PubSubType>(), Count<PubSubType>()};
-}
-
-const std::map<std::string, TypeSupport>& Types() {
-  static const std::map<std::string, TypeSupport> types = {
-      {"stickrep::msgs::SonarEcho", Support<msgs::SonarEchoPubSubType>()},
-      {"stickrep::msgs::SonarScan", Support<msgs::SonarScanPubSubType>()},
-      {"stickrep::msgs::Image", Support<msgs::ImagePubSubType>()},
-      {"stickrep::msgs::WheelCommand", Support<msgs::WheelCommandPubSubType>()},
-      {"stickrep::msgs::EncoderReading", Support<msgs::EncoderReadingPubSubType>()},
-      {"stickrep::msgs::MotionCommand", Support<msgs::MotionCommandPubSubType>()},
-      {"stickrep::msgs::MotionState", Support<msgs::MotionStatePubSubType>()},
-      {"stickrep::msgs::Odometry", Support<msgs::OdometryPubSubType>()},
-      {"stickrep::msgs::LandmarkObservation", Support<msgs::LandmarkObservationPubSubType>()},
-      {"stickrep::msgs::LocalizationPose", Support<msgs::LocalizationPosePubSubType>()},
-      {"stickrep::msgs::PoseHypotheses", Support<msgs::PoseHypothesesPubSubType>()},
-      {"stickrep::msgs::StickRepMap", Support<msgs::StickRepMapPubSubType>()},
-      {"stickrep::msgs::MissionGoal", Support<msgs::MissionGoalPubSubType>()},
-      {"stickrep::msgs::MissionStatus", Support<msgs::MissionStatusPubSubType>()},
-      {"stickrep::msgs::ComponentStatus", Support<msgs::ComponentStatusPubSubType>()},
-      {"stickrep::msgs::GroundTruth", Support<msgs::GroundTruthPubSubType>()},
-  };
-  return types;
+// A reader of `topic` that keeps samples serialized, with the catalogue's QoS for the topic
+// (or best effort, which matches any writer, for a topic the catalogue does not name).
+std::unique_ptr<runtime::RawReader> ReadRaw(Session& s, runtime::Executor& ex,
+                                            const std::string& topic, const MessageType& type,
+                                            runtime::RawReader::Callback fn) {
+  runtime::QosProfile qos;
+  if (s.participant->catalog().HasTopic(topic)) {
+    qos = s.participant->catalog().ForTopic(topic);
+  } else {
+    qos.name = "console";
+    qos.reliability = runtime::QosProfile::Reliability::kBestEffort;
+  }
+  return std::make_unique<runtime::RawReader>(*s.participant, ex, topic, type.make_support, qos,
+                                              std::move(fn));
 }
 
 }  // namespace
+
+DomainSession JoinDomain(const std::string& system_file, int domain_id,
+                         const runtime::DeploymentOptions& deployment, const std::string& name,
+                         double wait_s) {
+  DomainSession s;
+  s.system = runtime::SystemConfig::LoadFile(system_file);
+  if (domain_id >= 0) s.system.domain_id = domain_id;
+  s.participant = std::make_unique<runtime::Participant>(
+      runtime::MakeParticipantConfig(s.system, deployment, name),
+      runtime::QosCatalog::LoadFile(s.system.qos_file));
+  s.listener = &s.participant->discovery();
+  if (s.listener->UsesServers()) {
+    // Discovery goes through the server: wait (bounded) until it is reached, then listen.
+    const bool reached = runtime::WaitFor(
+        [&] { return s.listener->ServersReached() > 0 || !runtime::KeepRunning().load(); },
+        std::max(5.0, wait_s));
+    if (!reached || s.listener->ServersReached() == 0) {
+      fmt::print(stderr, "{}: no discovery server reached at {}\n", name,
+                 s.participant->servers_text());
+    }
+  }
+  return s;
+}
 
 int MeasureBandwidth(const ConsoleOptions& o, std::ostream& out) {
   Session s = Join(o);
@@ -132,11 +86,16 @@ int MeasureBandwidth(const ConsoleOptions& o, std::ostream& out) {
                                       std::chrono::duration_cast<runtime::Executor::Clock::duration>(
                                           std::chrono::duration<double>(o.wait_s)));
   std::map<std::string, Traffic> traffic;
-  std::vector<std::unique_ptr<runtime::Drainable>> readers;
+  std::vector<std::unique_ptr<runtime::RawReader>> readers;
   for (const auto& t : runtime::Summarise(s.listener->Endpoints())) {
-    const auto type = Types().find(t.type);
-    if (t.writers == 0 || type == Types().end()) continue;
-    readers.push_back(type->second.count(*s.participant, ex, t.topic, traffic[t.topic]));
+    const MessageType* type = FindMessageType(t.type);
+    if (t.writers == 0 || type == nullptr) continue;
+    Traffic& counted = traffic[t.topic];
+    readers.push_back(ReadRaw(s, ex, t.topic, *type,
+                              [&counted](const runtime::RawSample& m, const runtime::RawSampleInfo&) {
+                                counted.samples++;
+                                counted.bytes += m.data.size();
+                              }));
   }
   const double window_s = o.timeout_s > 0.0 ? o.timeout_s : 10.0;
   ex.Spin(runtime::KeepRunning(), runtime::Executor::Clock::now() +
@@ -215,14 +174,23 @@ int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& o
     fmt::print(stderr, "no writer of {} appeared\n", topic);
     return 1;
   }
-  const auto support = Types().find(type);
-  if (support == Types().end()) {
+  const MessageType* support = FindMessageType(type);
+  if (support == nullptr) {
     fmt::print(stderr, "{} carries {}, a type this console cannot print\n", topic, type);
     return 1;
   }
   runtime::Executor ex;
   int printed = 0;
-  auto reader = support->second.echo(*s.participant, ex, topic, out, printed);
+  auto reader = ReadRaw(s, ex, topic, *support,
+                        [&](const runtime::RawSample& m, const runtime::RawSampleInfo&) {
+                          try {
+                            out << support->decode_json(m.data.data(), m.data.size()).dump()
+                                << '\n' << std::flush;
+                            printed++;
+                          } catch (const PayloadError& e) {
+                            fmt::print(stderr, "{}: a sample dropped: {}\n", topic, e.what());
+                          }
+                        });
   const auto until = o.timeout_s > 0.0
                          ? runtime::Executor::Clock::now() +
                                std::chrono::duration_cast<runtime::Executor::Clock::duration>(

@@ -1,11 +1,14 @@
 #pragma once
 
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "runtime/deployment_options.h"
 #include "runtime/discovery.h"
+#include "runtime/participant.h"
+#include "runtime/system_config.h"
 
 namespace stickrep::console {
 
@@ -21,6 +24,21 @@ struct ConsoleOptions {
   // as a super client (deploy/fastdds/discovery_client.xml) so that it sees every topic.
   runtime::DeploymentOptions deployment;
 };
+
+// A participant of a base-station tool on a deployment's domain (the console, the recorder,
+// the replayer).
+struct DomainSession {
+  runtime::SystemConfig system;
+  std::unique_ptr<runtime::Participant> participant;
+  const runtime::DiscoveryListener* listener = nullptr;
+};
+
+// Joins the domain of `system_file` (or `domain_id` when >= 0) as `name`; through a
+// discovery server, waits (at most max(5 s, wait_s)) until one is reached and says so on
+// stderr when none is. Throws InputError for bad settings.
+DomainSession JoinDomain(const std::string& system_file, int domain_id,
+                         const runtime::DeploymentOptions& deployment, const std::string& name,
+                         double wait_s);
 
 // `list`: every topic seen on the domain with its type, writer and reader counts and QoS.
 // Returns the process exit code.

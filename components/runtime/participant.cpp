@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <sstream>
+#include <typeinfo>
 #include <stdexcept>
 
 #include "common/input_error.h"
@@ -212,7 +213,15 @@ dds::Topic* Participant::GetTopic(const std::string& topic, dds::TopicDataType* 
     }
     types_.emplace(type_name, support);
   } else {
-    delete type;  // already registered: TypeSupport owns the first instance
+    // Already registered: TypeSupport owns the first instance. A raw (serialized) support
+    // and the real one of the same name cannot share a participant: samples of one would
+    // be handed to the other.
+    const bool same_kind = typeid(*t->second.get()) == typeid(*type);
+    delete type;
+    if (!same_kind) {
+      throw std::logic_error("type " + type_name + " is registered in another form on this "
+                             "participant (raw and typed endpoints of one type cannot mix)");
+    }
   }
   auto it = topics_.find(topic);
   if (it != topics_.end()) return it->second;
@@ -224,7 +233,17 @@ dds::Topic* Participant::GetTopic(const std::string& topic, dds::TopicDataType* 
 
 dds::DataWriter* Participant::CreateDataWriter(const std::string& topic, dds::TopicDataType* type,
                                                dds::DataWriterListener* listener) {
-  const QosProfile& profile = catalog_.ForTopic(topic);
+  return CreateDataWriter(topic, type, listener, catalog_.ForTopic(topic));
+}
+
+dds::DataReader* Participant::CreateDataReader(const std::string& topic, dds::TopicDataType* type,
+                                               dds::DataReaderListener* listener) {
+  return CreateDataReader(topic, type, listener, catalog_.ForTopic(topic));
+}
+
+dds::DataWriter* Participant::CreateDataWriter(const std::string& topic, dds::TopicDataType* type,
+                                               dds::DataWriterListener* listener,
+                                               const QosProfile& profile) {
   dds::Topic* t = GetTopic(topic, type);
   dds::DataWriter* writer = publisher_->create_datawriter(
       t, ToDataWriterQos(profile, publisher_->get_default_datawriter_qos()), listener);
@@ -233,8 +252,8 @@ dds::DataWriter* Participant::CreateDataWriter(const std::string& topic, dds::To
 }
 
 dds::DataReader* Participant::CreateDataReader(const std::string& topic, dds::TopicDataType* type,
-                                               dds::DataReaderListener* listener) {
-  const QosProfile& profile = catalog_.ForTopic(topic);
+                                               dds::DataReaderListener* listener,
+                                               const QosProfile& profile) {
   dds::Topic* t = GetTopic(topic, type);
   dds::DataReader* reader = subscriber_->create_datareader(
       t, ToDataReaderQos(profile, subscriber_->get_default_datareader_qos()), listener);

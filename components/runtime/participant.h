@@ -68,6 +68,13 @@ class Participant {
   eprosima::fastdds::dds::DataReader* CreateDataReader(
       const std::string& topic, eprosima::fastdds::dds::TopicDataType* type,
       eprosima::fastdds::dds::DataReaderListener* listener);
+  // The same with an explicit profile instead of the catalogue's (recorder, replayer).
+  eprosima::fastdds::dds::DataWriter* CreateDataWriter(
+      const std::string& topic, eprosima::fastdds::dds::TopicDataType* type,
+      eprosima::fastdds::dds::DataWriterListener* listener, const QosProfile& profile);
+  eprosima::fastdds::dds::DataReader* CreateDataReader(
+      const std::string& topic, eprosima::fastdds::dds::TopicDataType* type,
+      eprosima::fastdds::dds::DataReaderListener* listener, const QosProfile& profile);
   void DeleteDataWriter(eprosima::fastdds::dds::DataWriter* writer);
   void DeleteDataReader(eprosima::fastdds::dds::DataReader* reader);
 

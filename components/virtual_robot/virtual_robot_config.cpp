@@ -10,10 +10,23 @@ namespace stickrep::virtual_robot {
 VirtualRobotConfig LoadVirtualRobotConfig(const StrictYaml& c) {
   VirtualRobotConfig out;
   const std::string source = c.Get<std::string>("source");
-  if (source == "replay") {
-    c.Fail("source", "replaying a recording is not built yet; use 'simulated'");
-  } else if (source != "simulated") {
+  if (source != "replay" && source != "simulated") {
     c.Fail("source", "'" + source + "' is not one of: simulated, replay");
+  }
+  out.replay = source == "replay";
+  if (c.Has("replay")) {
+    const StrictYaml r = c.Child("replay");
+    out.recording.file = r.Get<std::string>("file");
+    out.recording.rate = r.Get<double>("rate", 0.5, 20.0);
+    out.recording.start_s = r.Get<double>("start_s", 0.0, 1e7, "s");
+    out.recording.duration_s = r.Get<double>("duration_s", 0.0, 1e7, "s");
+    out.recording.loop = r.Get<bool>("loop");
+    r.Finish();
+    if (out.replay && out.recording.file.empty()) {
+      r.Fail("file", "source is 'replay': name a recording (stickrep-record -o FILE)");
+    }
+  } else if (out.replay) {
+    c.Fail("replay", "source is 'replay': a `replay` section must name the recording");
   }
   out.seed = c.Get<std::uint64_t>("seed");
   out.start_offset_in = c.Get<double>("start_offset_in", -1.0, 1e7, "in");
@@ -88,8 +101,15 @@ PlacedRobot PlaceRobot(const map::Map& map, const sensing::RobotConfig& robot,
 
 bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth,
                       const std::string& truth_ring_id, int ring_edge_count) {
-  const int de = std::abs(edge - truth.edge_index);
-  return ring_id == truth_ring_id && forward == truth.forward_in_ring &&
+  return PoseMatchesTruth(ring_id, edge, forward, truth_ring_id, truth.edge_index,
+                          truth.forward_in_ring, ring_edge_count);
+}
+
+bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward,
+                      const std::string& truth_ring_id, int truth_edge, bool truth_forward,
+                      int ring_edge_count) {
+  const int de = std::abs(edge - truth_edge);
+  return ring_id == truth_ring_id && forward == truth_forward &&
          (de <= 1 || de == ring_edge_count - 1);
 }
 

@@ -11,8 +11,19 @@
 
 namespace stickrep::virtual_robot {
 
+// The recording a replaying virtual robot plays (the `replay` section).
+struct ReplaySourceConfig {
+  std::string file;        // a stickrep-record recording
+  double rate = 1.0;       // recorded seconds per wall second
+  double start_s = 0.0;    // skipped at the start of the recording
+  double duration_s = 0.0; // 0: to the end
+  bool loop = false;
+};
+
 // The virtual robot's settings (configs/virtual_robot.yaml).
 struct VirtualRobotConfig {
+  bool replay = false;            // source: replay (else simulated)
+  ReplaySourceConfig recording;   // read when replay
   std::uint64_t seed = 1;
   double start_offset_in = -1.0;  // along the ring; -1: drawn from the seed
   WorldSimConfig world;           // start_lateral_offset_in/heading filled by DrawStart
@@ -30,7 +41,7 @@ struct VirtualRobotConfig {
 };
 
 // Reads the `virtual_robot` section; every key required, unknown keys rejected (InputError
-// with file, line and key). 'replay' is refused: recordings cannot be replayed yet.
+// with file, line and key). With `source: replay` the `replay` section names the recording.
 VirtualRobotConfig LoadVirtualRobotConfig(const StrictYaml& section);
 
 // Where a run starts: along the ring (drawn uniformly over its length when the config's
@@ -63,5 +74,9 @@ PlacedRobot PlaceRobot(const map::Map& map, const sensing::RobotConfig& robot,
 // published while a node is crossed).
 bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth,
                       const std::string& truth_ring_id, int ring_edge_count);
+// The same against a truth given as its ring, edge and direction (a recorded GroundTruth).
+bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward,
+                      const std::string& truth_ring_id, int truth_edge, bool truth_forward,
+                      int ring_edge_count);
 
 }  // namespace stickrep::virtual_robot

@@ -16,6 +16,7 @@
 #include "stickrep/map_io.h"
 #include "stickrep/map_render.h"
 #include "systemPubSubTypes.h"
+#include "virtual_robot/replay_robot_node.h"
 #include "virtual_robot/virtual_robot_config.h"
 #include "virtual_robot/world_sim.h"
 
@@ -31,9 +32,11 @@ constexpr double kEnvelopeSettleDistanceIn = 240.0;
 
 class VirtualRobotNode : public runtime::ProcessNode {
  public:
+  explicit VirtualRobotNode(VirtualRobotConfig config) : config_(std::move(config)) {}
+
   void Configure(runtime::NodeContext& ctx) override {
     ctx_ = &ctx;
-    const VirtualRobotConfig config = LoadVirtualRobotConfig(ctx.config);
+    const VirtualRobotConfig& config = config_;
     const std::uint64_t seed = config.seed;
     const WorldSimConfig& world = config.world;
     rtf_ = config.real_time_factor;
@@ -280,6 +283,7 @@ class VirtualRobotNode : public runtime::ProcessNode {
     }
   }
 
+  VirtualRobotConfig config_;
   runtime::NodeContext* ctx_ = nullptr;
   std::unique_ptr<WorldSim> sim_;
   double rtf_ = 1.0;
@@ -313,8 +317,25 @@ class VirtualRobotNode : public runtime::ProcessNode {
 
 }  // namespace
 
+// The node the config's `source` asks for, made once the config is read.
+class SourceNode : public runtime::ProcessNode {
+ public:
+  void Configure(runtime::NodeContext& ctx) override {
+    VirtualRobotConfig config = LoadVirtualRobotConfig(ctx.config);
+    node_ = config.replay ? MakeReplayRobotNode(config)
+                          : std::make_unique<VirtualRobotNode>(std::move(config));
+    node_->Configure(ctx);
+  }
+  void Activate() override { node_->Activate(); }
+  void Deactivate() override { node_->Deactivate(); }
+  std::string Summary() const override { return node_ ? node_->Summary() : ""; }
+
+ private:
+  std::unique_ptr<runtime::ProcessNode> node_;
+};
+
 std::unique_ptr<runtime::ProcessNode> MakeVirtualRobotNode() {
-  return std::make_unique<VirtualRobotNode>();
+  return std::make_unique<SourceNode>();
 }
 
 }  // namespace stickrep::virtual_robot

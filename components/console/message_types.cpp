@@ -1,0 +1,75 @@
+#include "console/message_types.h"
+
+#include <fastdds/rtps/common/SerializedPayload.h>
+
+#include <cstring>
+#include <new>
+
+#include "console/message_json.h"
+
+namespace stickrep::console {
+
+namespace {
+
+// Deserializes a raw payload with the type's own support class, then prints it.
+template <typename PubSubType>
+nlohmann::json Decode(const std::uint8_t* data, std::size_t size) {
+  if (size < 4) throw PayloadError("payload of " + std::to_string(size) + " bytes: no CDR header");
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(size));
+  std::memcpy(payload.data, data, size);
+  payload.length = static_cast<uint32_t>(size);
+  PubSubType support;
+  typename PubSubType::type sample;
+  bool ok = false;
+  try {
+    ok = support.deserialize(&payload, &sample);
+  } catch (const std::bad_alloc&) {
+    throw PayloadError("a sequence length in the payload exceeds memory");
+  } catch (const std::exception& e) {
+    throw PayloadError(std::string("CDR: ") + e.what());
+  }
+  if (!ok) throw PayloadError(std::string("the payload does not deserialize to ") + support.getName());
+  return ToJson(sample);
+}
+
+template <typename PubSubType>
+MessageType Entry(const char* name) {
+  return MessageType{name, [] { return new PubSubType(); }, &Decode<PubSubType>};
+}
+
+}  // namespace
+
+const std::map<std::string, MessageType>& MessageTypes() {
+  static const std::map<std::string, MessageType> types = [] {
+    std::map<std::string, MessageType> t;
+    for (MessageType m : {
+             Entry<msgs::SonarEchoPubSubType>("stickrep::msgs::SonarEcho"),
+             Entry<msgs::SonarScanPubSubType>("stickrep::msgs::SonarScan"),
+             Entry<msgs::ImagePubSubType>("stickrep::msgs::Image"),
+             Entry<msgs::WheelCommandPubSubType>("stickrep::msgs::WheelCommand"),
+             Entry<msgs::EncoderReadingPubSubType>("stickrep::msgs::EncoderReading"),
+             Entry<msgs::MotionCommandPubSubType>("stickrep::msgs::MotionCommand"),
+             Entry<msgs::MotionStatePubSubType>("stickrep::msgs::MotionState"),
+             Entry<msgs::OdometryPubSubType>("stickrep::msgs::Odometry"),
+             Entry<msgs::LandmarkObservationPubSubType>("stickrep::msgs::LandmarkObservation"),
+             Entry<msgs::LocalizationPosePubSubType>("stickrep::msgs::LocalizationPose"),
+             Entry<msgs::PoseHypothesesPubSubType>("stickrep::msgs::PoseHypotheses"),
+             Entry<msgs::StickRepMapPubSubType>("stickrep::msgs::StickRepMap"),
+             Entry<msgs::MissionGoalPubSubType>("stickrep::msgs::MissionGoal"),
+             Entry<msgs::MissionStatusPubSubType>("stickrep::msgs::MissionStatus"),
+             Entry<msgs::ComponentStatusPubSubType>("stickrep::msgs::ComponentStatus"),
+             Entry<msgs::GroundTruthPubSubType>("stickrep::msgs::GroundTruth"),
+         }) {
+      t.emplace(m.name, std::move(m));
+    }
+    return t;
+  }();
+  return types;
+}
+
+const MessageType* FindMessageType(const std::string& name) {
+  const auto it = MessageTypes().find(name);
+  return it == MessageTypes().end() ? nullptr : &it->second;
+}
+
+}  // namespace stickrep::console

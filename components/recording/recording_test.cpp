@@ -1,0 +1,260 @@
+// The recorder, the bag tools and the replayer in one process, on a domain of the test's own:
+// payloads are stored unchanged and come back unchanged; a full file keeps what it committed.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "bag/bag_storage.h"
+#include "common/input_error.h"
+#include "console/message_types.h"
+#include "recording/bag_inspect.h"
+#include "recording/recorder.h"
+#include "recording/replay_session.h"
+#include "recording/replayer.h"
+#include "runtime/endpoint.h"
+#include "runtime/test_domain.h"
+#include "sensorsPubSubTypes.h"
+#include "systemPubSubTypes.h"
+
+namespace stickrep::recording {
+namespace {
+
+using runtime::ParticipantConfig;
+using runtime::QosCatalog;
+
+std::string TempPath(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("stickrep_recording_test_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::filesystem::remove(path);
+  return path.string();
+}
+
+QosCatalog Catalog() { return QosCatalog::LoadFile(runtime::DefaultConfigDir() + "/qos.yaml"); }
+
+RecordOptions Options(const std::string& output, double duration_s) {
+  RecordOptions o;
+  o.output = output;
+  o.system_file = runtime::DefaultConfigDir() + "/system.yaml";
+  o.domain_id = runtime::TestDomainId();
+  o.duration_s = duration_s;
+  return o;
+}
+
+msgs::Image Frame(int k) {
+  msgs::Image img;
+  img.width_px(512);
+  img.height_px(480);
+  img.step_bytes(512);
+  img.encoding("mono8");
+  img.data(std::vector<uint8_t>(512 * 480, static_cast<uint8_t>(k)));
+  return img;
+}
+
+// Records for `duration_s` on a thread while `publish` runs on this one.
+RecordReport RecordWhile(const RecordOptions& o, const std::function<void()>& publish) {
+  RecordReport report;
+  std::thread recorder([&] {
+    std::ostringstream log;
+    report = Record(o, log);
+  });
+  publish();
+  recorder.join();
+  return report;
+}
+
+TEST(RecordingTest, RecordsEveryTopicUnchangedAndTheToolsReadIt) {
+  const std::string file = TempPath("round_trip.db3");
+  runtime::Participant p(ParticipantConfig{runtime::TestDomainId(), "publisher", "", "", {}},
+                         Catalog());
+  runtime::Writer<msgs::SonarEchoPubSubType> echoes(p, "device/sonar/echo");
+  runtime::Writer<msgs::ImagePubSubType> frames(p, "device/camera/frame");
+  const RecordReport report = RecordWhile(Options(file, 4.0), [&] {
+    ASSERT_TRUE(echoes.WaitForMatched(1, 5.0));
+    ASSERT_TRUE(frames.WaitForMatched(1, 5.0));
+    for (int k = 1; k <= 20; ++k) {
+      msgs::SonarEcho e;
+      std::array<float, 24> r;
+      r.fill(10.0f * k);
+      e.range_in(r);
+      echoes.Publish(e, 1000 * k);
+      if (k % 4 == 0) {
+        msgs::Image img = Frame(k);
+        frames.Publish(img, 1000 * k);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  ASSERT_TRUE(report.failure.empty()) << report.failure;
+  EXPECT_EQ(report.topics.at("device/sonar/echo").stored, 20u);
+  EXPECT_EQ(report.topics.at("device/camera/frame").stored, 5u);
+  EXPECT_EQ(report.topics.at("device/sonar/echo").lost, 0u);
+
+  const BagInfo info = InspectBag(file);
+  ASSERT_EQ(info.topics.size(), 2u);
+  EXPECT_EQ(info.messages, 25);
+  EXPECT_EQ(info.metadata.count("stickrep_version"), 1u);
+  EXPECT_EQ(info.metadata.count("counts"), 1u);
+  bag::BagReader reader(file);
+  EXPECT_NE(reader.Metadata().at("idl/sensors.idl").find("struct SonarEcho"), std::string::npos);
+  EXPECT_NE(reader.Metadata().at("map_file.text").find("rings"), std::string::npos);
+  for (const auto& t : reader.topics()) {
+    EXPECT_NE(t.offered_qos_profiles.find("reliability"), std::string::npos) << t.name;
+  }
+
+  std::ostringstream check;
+  EXPECT_EQ(CheckBag(file, check), 0) << check.str();
+  std::ostringstream lines, err;
+  EXPECT_EQ(ExportTopic(file, "device/sonar/echo", lines, err), 0);
+  std::istringstream in(lines.str());
+  std::string first;
+  std::getline(in, first);
+  const auto j = nlohmann::json::parse(first);
+  EXPECT_EQ(j["header"]["sequence_number"], 1);
+  EXPECT_DOUBLE_EQ(j["range_in"][0].get<double>(), 10.0);
+  EXPECT_THROW(ExportTopic(file, "robot/sonar", lines, err), InputError);
+}
+
+TEST(RecordingTest, ReplayPublishesTheRecordedPayloadsInOrder) {
+  const std::string file = TempPath("replay.db3");
+  {
+    // A recording made by hand: 30 echoes 10 ms apart, serialized with the real type.
+    bag::BagWriter w(file);
+    const auto id = w.AddTopic({0, "device/sonar/echo", "stickrep::msgs::SonarEcho", "cdr",
+                                R"([{"reliability":"best_effort","durability":"volatile",)"
+                                R"("history":"keep_last 5","profile":"sensor"}])"});
+    msgs::SonarEchoPubSubType support;
+    for (int k = 1; k <= 30; ++k) {
+      msgs::SonarEcho e;
+      e.header().stamp_ns(k * 10'000'000LL);
+      e.header().sequence_number(k);
+      std::array<float, 24> r;
+      r.fill(static_cast<float>(k));
+      e.range_in(r);
+      eprosima::fastrtps::rtps::SerializedPayload_t payload(
+          support.getSerializedSizeProvider(&e)());
+      ASSERT_TRUE(support.serialize(&e, &payload));
+      w.Write(id, k * 10'000'000LL, 0, payload.data, payload.length);
+    }
+  }
+  runtime::Participant listener(
+      ParticipantConfig{runtime::TestDomainId(), "listener", "", "", {}}, Catalog());
+  runtime::Participant replaying(
+      ParticipantConfig{runtime::TestDomainId(), "replay", "", "", {}}, Catalog());
+  runtime::Executor ex;
+  std::vector<uint32_t> sequence;
+  std::vector<int64_t> stamps;
+  // A keep-last-5 best-effort reader, as the sonar process has: drained as samples come.
+  runtime::Reader<msgs::SonarEchoPubSubType> reader(listener, ex, "device/sonar/echo",
+                                                    [&](const msgs::SonarEcho& e) {
+                                                      sequence.push_back(e.header().sequence_number());
+                                                      stamps.push_back(e.header().stamp_ns());
+                                                    });
+  runtime::Executor replay_ex;
+  ReplayOptions o;
+  o.file = file;
+  o.rate = 2.0;
+  ReplaySession session(replaying, replay_ex, o);
+  session.replayer().Start();
+  ASSERT_TRUE(runtime::WaitFor(
+      [&] {
+        ex.SpinOnce(std::chrono::milliseconds(5));
+        return session.replayer().done();
+      },
+      20.0));
+  runtime::WaitFor([&] {
+    ex.SpinOnce(std::chrono::milliseconds(5));
+    return sequence.size() >= 30;
+  }, 2.0);
+  session.replayer().Stop();
+  ASSERT_EQ(sequence.size(), 30u);
+  for (int k = 0; k < 30; ++k) {
+    EXPECT_EQ(sequence[k], static_cast<uint32_t>(k + 1));
+    EXPECT_EQ(stamps[k], (k + 1) * 10'000'000LL);  // header stamps as recorded
+  }
+  const ReplayReport& r = session.replayer().report();
+  EXPECT_EQ(r.sent.at("device/sonar/echo"), 30u);
+  EXPECT_TRUE(r.finished);
+  // 290 ms of recording at rate 2.
+  EXPECT_GT(r.duration_s, 0.12);
+  EXPECT_NE(session.Summary().find("open loop: 0 wheel commands ignored"), std::string::npos);
+}
+
+TEST(RecordingTest, BadReplayOptionsAreRefusedNamingTheOption) {
+  const std::string file = TempPath("options.db3");
+  {
+    bag::BagWriter w(file);
+    const auto id = w.AddTopic({0, "a/b", "stickrep::msgs::NotAType", "cdr", "[]"});
+    const uint8_t bytes[8] = {0, 1, 0, 0, 1, 2, 3, 4};
+    w.Write(id, 1, 1, bytes, sizeof(bytes));
+  }
+  runtime::Participant p(ParticipantConfig{runtime::TestDomainId(), "replay", "", "", {}},
+                         Catalog());
+  ReplayOptions o;
+  o.file = file;
+  o.rate = 40;
+  EXPECT_THROW(ValidateReplayOptions(o), InputError);
+  o.rate = 1;
+  try {
+    Replayer r(p, o);
+    FAIL() << "a type this build does not know was replayed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("NotAType"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ParseRemaps({"nocolon"}), InputError);
+  EXPECT_EQ(ParseRemaps({"a/b:c/d"}).at("a/b"), "c/d");
+  std::ostringstream check;
+  EXPECT_EQ(CheckBag(file, check), 1) << check.str();
+  EXPECT_NE(check.str().find("NotAType"), std::string::npos);
+}
+
+TEST(RecordingTest, APayloadThatDoesNotDeserializeIsNamedByCheck) {
+  const std::string file = TempPath("bad_payload.db3");
+  {
+    bag::BagWriter w(file);
+    const auto id = w.AddTopic({0, "device/camera/frame", "stickrep::msgs::Image", "cdr", "[]"});
+    // A CDR header, then a header struct and a sequence length far beyond the payload.
+    std::vector<uint8_t> bytes = {0, 1, 0, 0};
+    for (int k = 0; k < 12; ++k) bytes.push_back(0);
+    for (int k = 0; k < 8; ++k) bytes.push_back(0xff);
+    w.Write(id, 5, 5, bytes.data(), bytes.size());
+  }
+  std::ostringstream check;
+  EXPECT_EQ(CheckBag(file, check), 1) << check.str();
+  EXPECT_NE(check.str().find("does not deserialize"), std::string::npos) << check.str();
+}
+
+TEST(RecordingTest, AFullDiskEndsTheRecordingAndKeepsWhatWasCommitted) {
+  const std::string file = TempPath("full.db3");
+  runtime::Participant p(ParticipantConfig{runtime::TestDomainId(), "publisher", "", "", {}},
+                         Catalog());
+  runtime::Writer<msgs::ImagePubSubType> frames(p, "device/camera/frame");
+  RecordOptions o = Options(file, 10.0);
+  o.topics = {"device/camera/frame"};
+  o.max_bytes = 3'000'000;  // room for about 11 frames of 246 kB
+  const RecordReport report = RecordWhile(o, [&] {
+    ASSERT_TRUE(frames.WaitForMatched(1, 5.0));
+    for (int k = 1; k <= 40; ++k) {
+      msgs::Image img = Frame(k);
+      frames.Publish(img, k);
+      std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    }
+  });
+  EXPECT_FALSE(report.failure.empty());
+  const auto stored = report.topics.at("device/camera/frame").stored;
+  EXPECT_GT(stored, 0u);
+  EXPECT_LT(stored, 40u);
+  bag::BagReader reader(file);
+  EXPECT_EQ(static_cast<uint64_t>(reader.Counts().begin()->second), stored);
+  std::ostringstream check;
+  EXPECT_EQ(CheckBag(file, check), 0) << check.str();
+}
+
+}  // namespace
+}  // namespace stickrep::recording
