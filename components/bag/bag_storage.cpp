@@ -84,6 +84,15 @@ std::int64_t BagWriter::AddTopic(const TopicInfo& topic) {
   return sqlite3_last_insert_rowid(db_);
 }
 
+void BagWriter::SetTopicQos(std::int64_t topic_id, const std::string& offered_qos_profiles) {
+  Statement s;
+  sqlite3_prepare_v2(db_, "UPDATE topics SET offered_qos_profiles = ? WHERE id = ?", -1, &s.s,
+                     nullptr);
+  sqlite3_bind_text(s.s, 1, offered_qos_profiles.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(s.s, 2, topic_id);
+  if (sqlite3_step(s.s) != SQLITE_DONE) Fail("cannot update the QoS of topic id " + std::to_string(topic_id));
+}
+
 void BagWriter::BeginIfNeeded() {
   if (in_batch_) return;
   Exec("BEGIN;");

@@ -47,6 +47,8 @@ class BagWriter {
 
   // A topic's row; its id for Write().
   std::int64_t AddTopic(const TopicInfo& topic);
+  // Replaces a topic's offered_qos_profiles (the writers' QoS, once discovery has seen them).
+  void SetTopicQos(std::int64_t topic_id, const std::string& offered_qos_profiles);
   void Write(std::int64_t topic_id, std::int64_t timestamp_ns, std::int64_t received_ns,
              const std::uint8_t* data, std::size_t size);
   void SetMetadata(const std::string& key, const std::string& value);

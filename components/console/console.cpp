@@ -57,13 +57,14 @@ std::unique_ptr<runtime::RawReader> ReadRaw(Session& s, runtime::Executor& ex,
 
 DomainSession JoinDomain(const std::string& system_file, int domain_id,
                          const runtime::DeploymentOptions& deployment, const std::string& name,
-                         double wait_s) {
+                         double wait_s, double announcement_period_s) {
   DomainSession s;
   s.system = runtime::SystemConfig::LoadFile(system_file);
   if (domain_id >= 0) s.system.domain_id = domain_id;
+  runtime::ParticipantConfig config = runtime::MakeParticipantConfig(s.system, deployment, name);
+  config.announcement_period_s = announcement_period_s;
   s.participant = std::make_unique<runtime::Participant>(
-      runtime::MakeParticipantConfig(s.system, deployment, name),
-      runtime::QosCatalog::LoadFile(s.system.qos_file));
+      config, runtime::QosCatalog::LoadFile(s.system.qos_file));
   s.listener = &s.participant->discovery();
   if (s.listener->UsesServers()) {
     // Discovery goes through the server: wait (bounded) until it is reached, then listen.

@@ -38,7 +38,7 @@ struct DomainSession {
 // stderr when none is. Throws InputError for bad settings.
 DomainSession JoinDomain(const std::string& system_file, int domain_id,
                          const runtime::DeploymentOptions& deployment, const std::string& name,
-                         double wait_s);
+                         double wait_s, double announcement_period_s = 0.0);
 
 // `list`: every topic seen on the domain with its type, writer and reader counts and QoS.
 // Returns the process exit code.

@@ -2,6 +2,7 @@
 
 #include <fastdds/rtps/common/SerializedPayload.h>
 
+#include <algorithm>
 #include <cstring>
 #include <new>
 
@@ -33,8 +34,9 @@ nlohmann::json Decode(const std::uint8_t* data, std::size_t size) {
 }
 
 template <typename PubSubType>
-MessageType Entry(const char* name) {
-  return MessageType{name, [] { return new PubSubType(); }, &Decode<PubSubType>};
+MessageType Entry(const char* name, std::vector<std::string> topics) {
+  return MessageType{name, std::move(topics), [] { return new PubSubType(); },
+                     &Decode<PubSubType>};
 }
 
 }  // namespace
@@ -43,28 +45,37 @@ const std::map<std::string, MessageType>& MessageTypes() {
   static const std::map<std::string, MessageType> types = [] {
     std::map<std::string, MessageType> t;
     for (MessageType m : {
-             Entry<msgs::SonarEchoPubSubType>("stickrep::msgs::SonarEcho"),
-             Entry<msgs::SonarScanPubSubType>("stickrep::msgs::SonarScan"),
-             Entry<msgs::ImagePubSubType>("stickrep::msgs::Image"),
-             Entry<msgs::WheelCommandPubSubType>("stickrep::msgs::WheelCommand"),
-             Entry<msgs::EncoderReadingPubSubType>("stickrep::msgs::EncoderReading"),
-             Entry<msgs::MotionCommandPubSubType>("stickrep::msgs::MotionCommand"),
-             Entry<msgs::MotionStatePubSubType>("stickrep::msgs::MotionState"),
-             Entry<msgs::OdometryPubSubType>("stickrep::msgs::Odometry"),
-             Entry<msgs::LandmarkObservationPubSubType>("stickrep::msgs::LandmarkObservation"),
-             Entry<msgs::LocalizationPosePubSubType>("stickrep::msgs::LocalizationPose"),
-             Entry<msgs::PoseHypothesesPubSubType>("stickrep::msgs::PoseHypotheses"),
-             Entry<msgs::StickRepMapPubSubType>("stickrep::msgs::StickRepMap"),
-             Entry<msgs::MissionGoalPubSubType>("stickrep::msgs::MissionGoal"),
-             Entry<msgs::MissionStatusPubSubType>("stickrep::msgs::MissionStatus"),
-             Entry<msgs::ComponentStatusPubSubType>("stickrep::msgs::ComponentStatus"),
-             Entry<msgs::GroundTruthPubSubType>("stickrep::msgs::GroundTruth"),
+             Entry<msgs::SonarEchoPubSubType>("stickrep::msgs::SonarEcho", {"device/sonar/echo"}),
+             Entry<msgs::SonarScanPubSubType>("stickrep::msgs::SonarScan", {"robot/sonar"}),
+             Entry<msgs::ImagePubSubType>("stickrep::msgs::Image", {"device/camera/frame", "robot/camera/image"}),
+             Entry<msgs::WheelCommandPubSubType>("stickrep::msgs::WheelCommand", {"device/base/wheel_command"}),
+             Entry<msgs::EncoderReadingPubSubType>("stickrep::msgs::EncoderReading", {"device/base/encoders"}),
+             Entry<msgs::MotionCommandPubSubType>("stickrep::msgs::MotionCommand", {"robot/motion/command"}),
+             Entry<msgs::MotionStatePubSubType>("stickrep::msgs::MotionState", {"robot/motion/state"}),
+             Entry<msgs::OdometryPubSubType>("stickrep::msgs::Odometry", {"robot/odometry"}),
+             Entry<msgs::LandmarkObservationPubSubType>("stickrep::msgs::LandmarkObservation", {"perception/landmark"}),
+             Entry<msgs::LocalizationPosePubSubType>("stickrep::msgs::LocalizationPose", {"localization/pose"}),
+             Entry<msgs::PoseHypothesesPubSubType>("stickrep::msgs::PoseHypotheses", {"localization/hypotheses"}),
+             Entry<msgs::StickRepMapPubSubType>("stickrep::msgs::StickRepMap", {"map/stickrep"}),
+             Entry<msgs::MissionGoalPubSubType>("stickrep::msgs::MissionGoal", {"mission/goal"}),
+             Entry<msgs::MissionStatusPubSubType>("stickrep::msgs::MissionStatus", {"mission/status"}),
+             Entry<msgs::ComponentStatusPubSubType>("stickrep::msgs::ComponentStatus", {"system/status"}),
+             Entry<msgs::GroundTruthPubSubType>("stickrep::msgs::GroundTruth", {"sim/ground_truth"}),
          }) {
       t.emplace(m.name, std::move(m));
     }
     return t;
   }();
   return types;
+}
+
+const MessageType* TypeOfTopic(const std::string& topic) {
+  for (const auto& [name, type] : MessageTypes()) {
+    if (std::find(type.topics.begin(), type.topics.end(), topic) != type.topics.end()) {
+      return &type;
+    }
+  }
+  return nullptr;
 }
 
 const MessageType* FindMessageType(const std::string& name) {

@@ -13,11 +13,13 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace stickrep::console {
 
 struct MessageType {
   std::string name;  // the DDS type name, e.g. "stickrep::msgs::SonarScan"
+  std::vector<std::string> topics;  // the StickRep topics that carry it (configs/qos.yaml)
   // A new instance of the fastddsgen support class (the caller owns it).
   std::function<eprosima::fastdds::dds::TopicDataType*()> make_support;
   // A serialized CDR payload (with its encapsulation header) in the console's JSON form.
@@ -33,6 +35,8 @@ class PayloadError : public std::runtime_error {
 
 // Every StickRep type by name.
 const std::map<std::string, MessageType>& MessageTypes();
+// The type a StickRep topic carries; nullptr for a topic that is not StickRep's.
+const MessageType* TypeOfTopic(const std::string& topic);
 // nullptr for a name this build does not know.
 const MessageType* FindMessageType(const std::string& name);
 

@@ -27,6 +27,9 @@ namespace {
 
 using runtime::QosProfile;
 
+// Samples a recorder's reader keeps until they are taken: 10 s of camera frames at 10x.
+constexpr int kRecorderDepth = 500;
+
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
@@ -65,7 +68,7 @@ QosProfile RecorderQos(const std::vector<runtime::DiscoveredEndpoint>& writers) 
                                : QosProfile::Reliability::kBestEffort;
   q.durability = all_latched ? QosProfile::Durability::kTransientLocal
                              : QosProfile::Durability::kVolatile;
-  q.history_depth = 500;
+  q.history_depth = kRecorderDepth;
   return q;
 }
 
@@ -74,13 +77,15 @@ class Session {
   Session(const RecordOptions& o, std::ostream& log)
       : options_(o),
         log_(log),
+        // Announced every 0.2 s, so that a robot started after the recorder finds it at once.
         domain_(console::JoinDomain(o.system_file, o.domain_id, o.deployment, "stickrep-record",
-                                    1.0)),
+                                    1.0, 0.2)),
         // The session commits (every batch_s at most), so that it knows what is stored.
         bag_(o.output, 1e9) {
     bag_.SetSizeLimit(o.max_bytes);
     start_ns_ = runtime::WallClockNowNs();
     WriteStartMetadata();
+    SubscribeCatalogued();
   }
 
   RecordReport Run() {
@@ -108,6 +113,7 @@ class Session {
     if (failure_.empty()) executor_.SpinOnce(std::chrono::milliseconds(0));  // what is waiting
     Commit();
     for (const auto& r : readers_) report_.topics[r->topic()].lost = r->lost();
+    StoreDiscoveredQos();
     report_.duration_s = (runtime::WallClockNowNs() - start_ns_) * 1e-9;
     report_.failure = failure_;
     WriteEndMetadata();
@@ -122,7 +128,30 @@ class Session {
                options_.topics.end();
   }
 
-  // Every topic with a writer of a known type that is not subscribed yet.
+  // StickRep's own topics (the QoS catalogue) are subscribed at once with the QoS their
+  // writers are made with, so that a recording started before the robot misses nothing
+  // while discovery runs. Their writers' QoS as discovery shows it is stored at the end.
+  void SubscribeCatalogued() {
+    for (const auto& [topic, stream] : domain_.participant->catalog().streams()) {
+      const console::MessageType* type = console::TypeOfTopic(topic);
+      if (!Wanted(topic) || type == nullptr) continue;
+      const QosProfile& offered = domain_.participant->catalog().ForTopic(topic);
+      QosProfile q = offered;
+      q.name = "recorder";
+      q.history_depth = kRecorderDepth;
+      q.deadline_s = 0.0;
+      q.liveliness_lease_s = 0.0;
+      runtime::DiscoveredEndpoint as_catalogued;
+      as_catalogued.reliability = runtime::ToString(offered.reliability);
+      as_catalogued.durability = runtime::ToString(offered.durability);
+      as_catalogued.deadline_s = offered.deadline_s;
+      as_catalogued.liveliness_lease_s = offered.liveliness_lease_s;
+      as_catalogued.user_data = runtime::EncodeProfileUserData(offered);
+      AddTopic(topic, *type, {as_catalogued}, q);
+    }
+  }
+
+  // Every other topic with a writer of a known type, as its writers appear.
   void Subscribe() {
     std::map<std::string, std::vector<runtime::DiscoveredEndpoint>> writers;
     for (const auto& e : domain_.listener->Endpoints()) {
@@ -140,22 +169,26 @@ class Session {
         }
         continue;
       }
-      bag::TopicInfo info;
-      info.name = topic;
-      info.type = type_name;
-      info.offered_qos_profiles = OfferedQos(ws).dump();
-      const std::int64_t id = bag_.AddTopic(info);
-      topic_ids_[topic] = id;
-      TopicTally& tally = report_.topics[topic];
-      tally.type = type_name;
-      readers_.push_back(std::make_unique<runtime::RawReader>(
-          *domain_.participant, executor_, topic, type->make_support, RecorderQos(ws),
-          [this, id, &tally](const runtime::RawSample& m, const runtime::RawSampleInfo& i) {
-            Store(id, tally, m, i);
-          }));
-      fmt::print(log_, "stickrep-record: recording {} ({}, {} writer{})\n", topic, type_name,
-                 ws.size(), ws.size() == 1 ? "" : "s");
+      AddTopic(topic, *type, ws, RecorderQos(ws));
     }
+  }
+
+  void AddTopic(const std::string& topic, const console::MessageType& type,
+                const std::vector<runtime::DiscoveredEndpoint>& writers, const QosProfile& qos) {
+    bag::TopicInfo info;
+    info.name = topic;
+    info.type = type.name;
+    info.offered_qos_profiles = OfferedQos(writers).dump();
+    const std::int64_t id = bag_.AddTopic(info);
+    topic_ids_[topic] = id;
+    TopicTally& tally = report_.topics[topic];
+    tally.type = type.name;
+    readers_.push_back(std::make_unique<runtime::RawReader>(
+        *domain_.participant, executor_, topic, type.make_support, qos,
+        [this, id, &tally](const runtime::RawSample& m, const runtime::RawSampleInfo& i) {
+          Store(id, tally, m, i);
+        }));
+    fmt::print(log_, "stickrep-record: recording {} ({})\n", topic, type.name);
   }
 
   void Store(std::int64_t id, TopicTally& tally, const runtime::RawSample& m,
@@ -191,6 +224,21 @@ class Session {
     } catch (const InputError& e) {
       failure_ = e.what();
       batch_.clear();
+    }
+  }
+
+  // The QoS each recorded topic's writers offered, as discovery saw them (catalogued topics
+  // were subscribed before their writers were seen).
+  void StoreDiscoveredQos() {
+    std::map<std::string, std::vector<runtime::DiscoveredEndpoint>> writers;
+    for (const auto& e : domain_.listener->Endpoints()) {
+      if (e.is_writer && topic_ids_.count(e.topic)) writers[e.topic].push_back(e);
+    }
+    try {
+      for (const auto& [topic, ws] : writers) bag_.SetTopicQos(topic_ids_[topic], OfferedQos(ws).dump());
+      bag_.Flush();
+    } catch (const InputError&) {
+      // A full file: the catalogue's QoS stays recorded.
     }
   }
 

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <sstream>
 
 #include "basePubSubTypes.h"
 #include "common/input_error.h"
@@ -37,12 +36,9 @@ ReplaySession::ReplaySession(runtime::Participant& participant, runtime::Executo
 }
 
 std::string ReplaySession::Summary() const {
-  std::ostringstream s;
-  PrintReplayReport(replayer_->report(), options_.rate, s);
-  std::string text = s.str();
-  while (!text.empty() && text.back() == '\n') text.pop_back();
-  return text + fmt::format("\nopen loop: {} wheel commands ignored (the recording's motion is "
-                            "replayed, not the commands)", wheel_commands_);
+  return ReplayReportLine(replayer_->report(), options_.rate) +
+         fmt::format("; open loop: {} wheel commands ignored (the recording's motion is "
+                     "replayed, not the commands)", wheel_commands_);
 }
 
 }  // namespace stickrep::recording

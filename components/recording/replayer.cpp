@@ -185,22 +185,25 @@ bool Replayer::OnePass(const SentCallback& on_sent, std::vector<double>& errors_
   return completed;
 }
 
-void PrintReplayReport(const ReplayReport& r, double rate, std::ostream& out) {
+std::string ReplayReportLine(const ReplayReport& r, double rate) {
   std::uint64_t total = 0;
+  std::string per_topic;
   for (const auto& [topic, n] : r.sent) {
-    fmt::print(out, "  {:<28} {:>8} samples\n", topic, n);
+    per_topic += fmt::format("{}{} {}", per_topic.empty() ? "" : ", ", topic, n);
     total += n;
   }
-  fmt::print(out, "replayed {} samples in {:.1f} s at rate {:g} ({} pass{}{}); {} refused by DDS; "
-             "send time - scheduled time: p50 {:.3f} ms, p99 {:.3f} ms, max {:.3f} ms\n",
-             total, r.duration_s, rate, r.passes, r.passes == 1 ? "" : "es",
-             r.finished ? "" : ", stopped before the end", r.refused, r.error_p50_ms,
-             r.error_p99_ms, r.error_max_ms);
+  std::string line = fmt::format(
+      "replayed {} samples ({}) in {:.1f} s at rate {:g} ({} pass{}{}); {} refused by DDS; send "
+      "time - scheduled time: p50 {:.3f} ms, p99 {:.3f} ms, max {:.3f} ms",
+      total, per_topic, r.duration_s, rate, r.passes, r.passes == 1 ? "" : "es",
+      r.finished ? "" : ", stopped before the end", r.refused, r.error_p50_ms, r.error_p99_ms,
+      r.error_max_ms);
   if (!r.without_readers.empty()) {
     std::string list;
     for (const auto& t : r.without_readers) list += (list.empty() ? "" : ", ") + t;
-    fmt::print(out, "no reader had appeared at the start on: {}\n", list);
+    line += "; no reader at the start on " + list;
   }
+  return line;
 }
 
 }  // namespace stickrep::recording

@@ -84,7 +84,7 @@ class Replayer {
   ReplayReport report_;
 };
 
-// The report as the tools print it.
-void PrintReplayReport(const ReplayReport& report, double rate, std::ostream& out);
+// The report in one line, as the tools print it.
+std::string ReplayReportLine(const ReplayReport& report, double rate);
 
 }  // namespace stickrep::recording

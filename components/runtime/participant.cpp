@@ -152,6 +152,9 @@ dds::DomainParticipantQos Participant::LoadQos() {
     }
   }
   auto& discovery = pqos.wire_protocol().builtin.discovery_config;
+  if (config_.announcement_period_s > 0.0) {
+    discovery.leaseDuration_announcementperiod = ToDuration(config_.announcement_period_s);
+  }
   if (!config_.discovery_servers.empty()) {
     eprosima::fastdds::rtps::RemoteServerList_t servers;
     const std::string list = JoinServers(config_.discovery_servers, ";");

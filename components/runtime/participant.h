@@ -32,6 +32,10 @@ struct ParticipantConfig {
   // -i i`). Given, they replace the profile's server list, and a participant whose profile
   // uses simple (multicast) discovery becomes a discovery-server client.
   std::vector<std::string> discovery_servers;
+  // How often the participant announces itself (simple discovery); 0: Fast DDS's 3 s. A
+  // participant that joins a running domain and must be found at once (the recorder) uses
+  // a short period: a participant that appears later learns of it within that time.
+  double announcement_period_s = 0.0;
 };
 
 // Checks that a Fast DDS XML profile file exists and is well-formed XML; throws InputError

@@ -9,6 +9,9 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
 
 #include "common/input_error.h"
 #include "runtime/deployment_options.h"
@@ -58,7 +61,32 @@ struct ProcessOptions {
   double run_for_s = 0.0;
   std::string log_level;
   DeploymentOptions deployment;
+  std::vector<std::string> sets;  // --set KEY=VALUE over the config section
 };
+
+// Applies --set KEY=VALUE (KEY dotted into nested mappings, VALUE read as YAML) to the
+// process's section of its config, before the section is checked: an unknown key is then
+// refused like one written in the file.
+void ApplySets(const StrictYaml& root, const std::string& name,
+               const std::vector<std::string>& sets) {
+  for (const std::string& set : sets) {
+    const auto eq = set.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw InputError("--set", 0, set, "expected KEY=VALUE, e.g. --set real_time_factor=4");
+    }
+    YAML::Node node = root.raw()[name];
+    const std::string key = set.substr(0, eq);
+    std::size_t begin = 0;
+    for (std::size_t dot; (dot = key.find('.', begin)) != std::string::npos; begin = dot + 1) {
+      node.reset(node[key.substr(begin, dot - begin)]);
+    }
+    try {
+      node[key.substr(begin)] = YAML::Load(set.substr(eq + 1));
+    } catch (const YAML::Exception& e) {
+      throw InputError("--set", 0, key, std::string("the value is not YAML: ") + e.what());
+    }
+  }
+}
 
 // Parses the command line; an exit code when the process must end at once (--help: 0, a
 // bad command line: 2).
@@ -78,6 +106,9 @@ std::optional<int> ParseProcessOptions(int argc, char** argv, const std::string&
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn or error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   AddDeploymentOptions(app, o.deployment);
+  app.add_option("--set", o.sets,
+                 "KEY=VALUE over this process's config section (dotted keys for nested ones; "
+                 "repeatable)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -109,6 +140,7 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
                                                                      : options.log_level));
     QosCatalog catalog = QosCatalog::LoadFile(system->qos_file);
     const StrictYaml config_root = StrictYaml::LoadFile(options.config_file);
+    ApplySets(config_root, name, options.sets);
     const StrictYaml config = config_root.Child(name);
     config_root.Finish();
 

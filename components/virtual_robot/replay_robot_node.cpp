@@ -52,11 +52,7 @@ class ReplayRobotNode : public runtime::ProcessNode {
   std::string Summary() const override {
     std::string checks;
     for (const std::string& c : pose_checks_) checks += "; " + c;
-    std::string text = session_->Summary();
-    for (char& ch : text) {
-      if (ch == '\n') ch = ';';
-    }
-    return fmt::format("replay of {}: {}{}", config_.recording.file, text,
+    return fmt::format("replay of {}: {}{}", config_.recording.file, session_->Summary(),
                        checks.empty() ? "; no pose recovered" : checks);
   }
 
