@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 
 #include "basePubSubTypes.h"
 #include "landmark/landmark_config.h"
@@ -73,8 +74,9 @@ class LandmarkNode : public runtime::ProcessNode {
       scan.ranges_in.push_back(r);
       scan.valid.push_back(valid);
     }
-    last_scan_ = std::move(scan);
-    last_scan_ns_ = s.header().stamp_ns();
+    scans_by_time_.push_back({s.header().stamp_ns(), std::move(scan)});
+    if (scans_by_time_.size() > kScanHistory) scans_by_time_.pop_front();
+    ProcessReadyFrames();
   }
 
   void OnOdometry(const msgs::Odometry& o) {
@@ -85,9 +87,15 @@ class LandmarkNode : public runtime::ProcessNode {
     }
     if (!odometer_.Add(o.header().stamp_ns(), o.distance_in())) {
       ctx_->counters.Drop("robot/odometry", "time went backwards");
+      return;
     }
+    last_odometry_ns_ = o.header().stamp_ns();
+    ProcessReadyFrames();
   }
 
+  // Frames wait until the scan and the odometry of their own instant have arrived (or can
+  // no longer arrive), so that a frame is paired by time, not by which stream came first:
+  // the same recording replayed gives the same observations.
   void OnImage(const msgs::Image& m) {
     ctx_->counters.CountIn();
     // Frames the camera wrote that never arrived: superseded in the keep-last-1 stream while
@@ -95,7 +103,49 @@ class LandmarkNode : public runtime::ProcessNode {
     const uint32_t seq = m.header().sequence_number();
     if (last_image_seq_ > 0 && seq > last_image_seq_ + 1) frames_missed_ += seq - last_image_seq_ - 1;
     last_image_seq_ = std::max(last_image_seq_, seq);
-    if (last_scan_ns_ == 0 || std::llabs(m.header().stamp_ns() - last_scan_ns_) > max_scan_age_ns_) {
+    pending_.push_back({m, images_->source_timestamp_ns()});
+    if (pending_.size() > kMaxPendingFrames) {
+      Process(pending_.front());  // the oldest with what has come: never hold more
+      pending_.pop_front();
+    }
+    ProcessReadyFrames();
+  }
+
+  void ProcessReadyFrames() {
+    while (!pending_.empty()) {
+      const int64_t t = pending_.front().image.header().stamp_ns();
+      const int64_t newest_scan = scans_by_time_.empty() ? 0 : scans_by_time_.back().stamp_ns;
+      const bool scans_done = newest_scan >= t;
+      const bool odometry_done = last_odometry_ns_ >= t;
+      // Data newer than the frame by more than the pairing window: what is missing is lost.
+      const int64_t newest = std::max(newest_scan, last_odometry_ns_);
+      if (!(scans_done && odometry_done) && newest - t <= max_scan_age_ns_) return;
+      Process(pending_.front());
+      pending_.pop_front();
+    }
+  }
+
+  // The scan nearest the frame in time, within the pairing window.
+  const sensing::SonarScan* ScanAt(int64_t stamp_ns) const {
+    const TimedScan* best = nullptr;
+    for (const TimedScan& s : scans_by_time_) {
+      if (best == nullptr || std::llabs(s.stamp_ns - stamp_ns) < std::llabs(best->stamp_ns - stamp_ns)) {
+        best = &s;
+      }
+    }
+    if (best == nullptr || std::llabs(best->stamp_ns - stamp_ns) > max_scan_age_ns_) return nullptr;
+    return &best->scan;
+  }
+
+  struct PendingFrame {
+    msgs::Image image;
+    int64_t source_timestamp_ns = 0;
+  };
+
+  void Process(const PendingFrame& frame) {
+    const msgs::Image& m = frame.image;
+    const sensing::SonarScan* scan = ScanAt(m.header().stamp_ns());
+    if (scan == nullptr) {
       ctx_->counters.Drop("robot/camera/image", "no sonar scan near the frame in time");
       return;
     }
@@ -108,7 +158,7 @@ class LandmarkNode : public runtime::ProcessNode {
     const vision::ImageView view{static_cast<int>(m.width_px()), static_cast<int>(m.height_px()),
                                  static_cast<int>(m.step_bytes()), m.encoding(), m.data().data(),
                                  m.data().size()};
-    const FrameOutcome out = pipeline_->Process(view, last_scan_);
+    const FrameOutcome out = pipeline_->Process(view, *scan);
     switch (out.kind) {
       case FrameOutcome::Kind::kBadFrame:
       case FrameOutcome::Kind::kNoRange:
@@ -137,7 +187,7 @@ class LandmarkNode : public runtime::ProcessNode {
       ctx_->counters.CountOut();
       doors_++;
       // Wall clock from the camera process writing the frame to the observation written.
-      latency_.Add((ctx_->now_ns() - images_->source_timestamp_ns()) * 1e-6);
+      latency_.Add((ctx_->now_ns() - frame.source_timestamp_ns) * 1e-6);
     }
   }
 
@@ -145,8 +195,15 @@ class LandmarkNode : public runtime::ProcessNode {
   sensing::RobotConfig robot_;
   std::unique_ptr<LandmarkPipeline> pipeline_;
   int64_t max_scan_age_ns_ = 300000000;
-  sensing::SonarScan last_scan_;
-  int64_t last_scan_ns_ = 0;
+  struct TimedScan {
+    int64_t stamp_ns = 0;
+    sensing::SonarScan scan;
+  };
+  static constexpr size_t kScanHistory = 16;
+  static constexpr size_t kMaxPendingFrames = 8;
+  std::deque<TimedScan> scans_by_time_;
+  std::deque<PendingFrame> pending_;
+  int64_t last_odometry_ns_ = 0;
   OdometerHistory odometer_;
   uint64_t frames_ = 0, doors_ = 0, no_door_ = 0;
   runtime::LatencyLog latency_;
