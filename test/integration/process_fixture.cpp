@@ -82,6 +82,25 @@ void ProcessFixture::StopAllAndExpectCleanExit(double timeout_s) {
   }
 }
 
+std::string ConfigWith(const std::string& file, const std::map<std::string, std::string>& keys) {
+  std::ifstream in(ConfigPath(file));
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(in, line)) {
+    for (const auto& [key, value] : keys) {
+      if (line.rfind("  " + key + ":", 0) == 0) line = "  " + key + ": " + value;
+    }
+    out << line << "\n";
+  }
+  return out.str();
+}
+
+std::string SmallMapSystem(const std::string& name) {
+  return WriteTempFile(name, ConfigWith("system.yaml", {{"qos_file", ConfigPath("qos.yaml")},
+                                                        {"robot_file", ConfigPath("robot.yaml")},
+                                                        {"map_file", kSmallMap}}));
+}
+
 std::string ProcessFixture::Outputs() {
   std::ostringstream out;
   for (auto& p : processes_) {

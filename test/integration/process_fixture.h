@@ -69,5 +69,13 @@ std::string BinPath(const std::string& name);
 std::string ConfigPath(const std::string& name);
 // Writes `text` to a fresh file under the test's temporary directory; returns its path.
 std::string WriteTempFile(const std::string& name, const std::string& text);
+// A shipped config file (configs/<file>) with some keys of its section replaced.
+std::string ConfigWith(const std::string& file, const std::map<std::string, std::string>& keys);
+// The small map of the Where-am-I tests: one corridor of the Engineering Building.
+constexpr const char* kSmallMap = STICKREP_SOURCE_DIR "/test/maps/wing1_corridor.yaml";
+constexpr int kSmallMapEdges = 118;
+// The shipped system.yaml on the small map (paths made absolute: it is written elsewhere),
+// as a temporary file named `name`.
+std::string SmallMapSystem(const std::string& name);
 
 }  // namespace stickrep::test

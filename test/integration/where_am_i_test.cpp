@@ -18,34 +18,11 @@
 namespace stickrep::test {
 namespace {
 
-constexpr const char* kSmallMap = STICKREP_SOURCE_DIR "/test/maps/wing1_corridor.yaml";
-constexpr int kSmallMapEdges = 118;
 // Simulated seconds per wall second. The runs take 20-60 s simulated. 3x leaves the machine
 // room for the other tests that ctest -j2 runs beside this one: starved of CPU, the landmark
 // process misses frames, doors go unseen, and the matcher is given a sequence with more
 // missed doors than its model expects.
 constexpr const char* kRealTimeFactor = "3";
-
-// A shipped config file with some keys of its section replaced.
-std::string ConfigWith(const std::string& file, const std::map<std::string, std::string>& keys) {
-  std::ifstream in(ConfigPath(file));
-  std::ostringstream out;
-  std::string line;
-  while (std::getline(in, line)) {
-    for (const auto& [key, value] : keys) {
-      if (line.rfind("  " + key + ":", 0) == 0) line = "  " + key + ": " + value;
-    }
-    out << line << "\n";
-  }
-  return out.str();
-}
-
-// The shipped system.yaml on the small map (paths made absolute: it is written elsewhere).
-std::string SmallMapSystem(const std::string& name) {
-  return WriteTempFile(name, ConfigWith("system.yaml", {{"qos_file", ConfigPath("qos.yaml")},
-                                                        {"robot_file", ConfigPath("robot.yaml")},
-                                                        {"map_file", kSmallMap}}));
-}
 
 class WhereAmITest : public ProcessFixture {
  protected:

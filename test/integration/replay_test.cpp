@@ -1,0 +1,167 @@
+// The acceptance experiment of recorded data: an all-in-one run on the small map is recorded
+// (the device streams and sim/ground_truth); the recording is replayed into sonar, camera,
+// locomotion, landmark, localizer and executive, with no virtual robot, at rate 1 and 4.
+// The localizer must recover the pose of the live run, and replays of one recording must
+// sense the same edge sequence.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <regex>
+
+#include "integration/process_fixture.h"
+#include "localizationPubSubTypes.h"
+#include "runtime/process.h"
+#include "systemPubSubTypes.h"
+
+namespace stickrep::test {
+namespace {
+
+constexpr const char* kRecordedTopics =
+    "device/sonar/echo,device/camera/frame,device/base/encoders,sim/ground_truth";
+
+struct Pose {
+  std::string ring;
+  int edge = -1;
+  bool forward = false;
+  bool operator==(const Pose& o) const {
+    return ring == o.ring && edge == o.edge && forward == o.forward;
+  }
+};
+
+std::ostream& operator<<(std::ostream& out, const Pose& p) {
+  return out << "ring '" << p.ring << "' edge " << p.edge << (p.forward ? " forward" : " backward");
+}
+
+class ReplayTest : public ProcessFixture {
+ protected:
+  ReplayTest() : ProcessFixture(45) {}
+
+  void SetUp() override {
+    system_ = SmallMapSystem("replay_system.yaml");
+    const auto dir = std::filesystem::path(system_).parent_path();
+    recording_ = (dir / "replay_test_run.db3").string();
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(recording_ + suffix);
+    poses_ = std::make_unique<runtime::Reader<msgs::LocalizationPosePubSubType>>(
+        participant(), executor(), "localization/pose", [this](const msgs::LocalizationPose& p) {
+          if (p.status() == msgs::LOCALIZATION_LOCALIZED && !pose_) {
+            pose_ = Pose{p.best().ring_id(), static_cast<int>(p.best().edge_index()),
+                         p.best().forward()};
+          }
+        });
+  }
+
+  // Every process but the virtual robot; the executive ends once the pose is recovered.
+  std::map<std::string, launch::ChildProcess*> StartPipeline() {
+    std::map<std::string, launch::ChildProcess*> started;
+    for (const char* exe : {"stickrep-sonar", "stickrep-camera", "stickrep-locomotion",
+                            "stickrep-landmark", "stickrep-localizer"}) {
+      started[exe] = &Start(exe, {"--system", system_});
+    }
+    started["stickrep-executive"] =
+        &Start("stickrep-executive",
+               {"--system", system_, "--config",
+                WriteTempFile("replay_exec.yaml",
+                              ConfigWith("executive.yaml", {{"exit_when_localized", "true"}}))});
+    return started;
+  }
+
+  // The sequence the localizer logged when it declared the pose.
+  static std::string SensedSequence(launch::ChildProcess& localizer) {
+    localizer.ReadLines(true);
+    std::smatch m;
+    const std::string& out = localizer.output();
+    static const std::regex sensed("info sensed: ([^\n]*)");
+    return std::regex_search(out, m, sensed) ? m[1].str() : "";
+  }
+
+  // A live run recorded: the pose it recovered and the sequence it sensed.
+  std::pair<Pose, std::string> RecordLiveRun() {
+    Start("stickrep-virtual-robot",
+          {"--system", system_, "--config",
+           WriteTempFile("replay_vr.yaml",
+                         ConfigWith("virtual_robot.yaml", {{"real_time_factor", "2"},
+                                                           {"seed", "2"},
+                                                           {"summary_png", "\"\""}}))});
+    launch::ChildProcess& recorder =
+        Start("stickrep-record", {"--system", system_, "-o", recording_, "--topics", kRecordedTopics});
+    // The recorder subscribed and matched the virtual robot before anything moves.
+    EXPECT_TRUE(SpinUntil(
+        [&] {
+          for (const auto& t : Topics()) {
+            if (t.topic == "device/camera/frame" && t.readers >= 1 && t.writers >= 1) return true;
+          }
+          return false;
+        },
+        20.0))
+        << Outputs();
+    auto pipeline = StartPipeline();
+    EXPECT_TRUE(SpinUntil([&] { return pose_.has_value(); }, 150.0)) << Outputs();
+    const std::string sensed = SensedSequence(*pipeline["stickrep-localizer"]);
+    StopAllAndExpectCleanExit();
+    recorder.ReadLines(true);
+    EXPECT_EQ(recorder.exit_code(), 0) << recorder.output();
+    EXPECT_NE(recorder.output().find("0 lost on the way"), std::string::npos) << recorder.output();
+    return {pose_.value_or(Pose{}), sensed};
+  }
+
+  // The recording replayed into the pipeline: the pose and the sequence sensed.
+  std::pair<Pose, std::string> Replay(const std::string& rate) {
+    pose_.reset();
+    auto pipeline = StartPipeline();
+    // Wait until the processes read the device streams, so the replay starts into them.
+    EXPECT_TRUE(SpinUntil(
+        [&] {
+          int ready = 0;
+          for (const auto& t : Topics()) {
+            if ((t.topic == "device/camera/frame" || t.topic == "device/sonar/echo" ||
+                 t.topic == "device/base/encoders") && t.readers >= 1) {
+              ready++;
+            }
+          }
+          return ready == 3;
+        },
+        20.0));
+    launch::ChildProcess& replay =
+        Start("stickrep-replay", {"--system", system_, recording_, "--rate", rate,
+                                  "--topics", kRecordedTopics, "--wait", "2"});
+    EXPECT_TRUE(SpinUntil([&] { return pose_.has_value(); }, 150.0)) << Outputs();
+    const std::string sensed = SensedSequence(*pipeline["stickrep-localizer"]);
+    EXPECT_TRUE(SpinUntil([&] { return replay.Exited(); }, 120.0)) << replay.output();
+    replay.ReadLines(true);
+    EXPECT_EQ(replay.exit_code(), 0) << replay.output();
+    EXPECT_NE(replay.output().find("wheel commands ignored"), std::string::npos) << replay.output();
+    StopAllAndExpectCleanExit();
+    return {pose_.value_or(Pose{}), sensed};
+  }
+
+  std::string system_;
+  std::string recording_;
+  std::optional<Pose> pose_;
+  std::unique_ptr<runtime::Reader<msgs::LocalizationPosePubSubType>> poses_;
+};
+
+TEST_F(ReplayTest, AReplayedRunRecoversTheLivePoseAtRates1And4AndSensesAlike) {
+  const auto [live_pose, live_sensed] = RecordLiveRun();
+  ASSERT_FALSE(live_pose.ring.empty()) << "the live run recovered no pose";
+  std::cout << "live: " << live_pose << "; sensed " << live_sensed << "\n";
+  RecordProperty("live_pose", ::testing::PrintToString(live_pose));
+
+  const auto [pose1, sensed1] = Replay("1");
+  EXPECT_EQ(pose1, live_pose) << "rate 1 sensed: " << sensed1 << "\nlive: " << live_sensed;
+  const auto [pose4, sensed4] = Replay("4");
+  EXPECT_EQ(pose4, live_pose) << "rate 4 sensed: " << sensed4 << "\nlive: " << live_sensed;
+  // Replays of one recording sense the same sequence (frames are paired by time).
+  const auto [pose4b, sensed4b] = Replay("4");
+  EXPECT_EQ(pose4b, live_pose);
+  EXPECT_FALSE(sensed1.empty());
+  EXPECT_EQ(sensed1, sensed4);
+  EXPECT_EQ(sensed4, sensed4b);
+  std::cout << "rate 1: " << pose1 << "; sensed " << sensed1 << "\nrate 4: " << pose4
+            << "; sensed " << sensed4 << "\nrate 4 again: " << pose4b << "; sensed " << sensed4b
+            << "\n";
+}
+
+}  // namespace
+}  // namespace stickrep::test
