@@ -57,6 +57,27 @@ TEST_F(BadConfigTest, OutOfRangeValueExitsWithCode2AndStatesTheRange) {
   EXPECT_THAT(p->output(), HasSubstr(":5: key 'locomotion.max_angular_rate_radps': value 50"));
 }
 
+TEST_F(BadConfigTest, SetOverridesAConfigKeyAndIsCheckedLikeTheFile) {
+  // A malformed --set, an unknown key set, and a replaying virtual robot without a recording
+  // or with one that is not there: each exits 2 naming the key or the file.
+  const auto malformed = RunToEnd({BinPath("stickrep-sonar"), "--domain", "31", "--set", "rate"});
+  EXPECT_EQ(malformed->exit_code(), 2);
+  EXPECT_THAT(malformed->output(), HasSubstr("expected KEY=VALUE"));
+  const auto unknown =
+      RunToEnd({BinPath("stickrep-sonar"), "--domain", "31", "--set", "rate_hz=3"});
+  EXPECT_EQ(unknown->exit_code(), 2);
+  EXPECT_THAT(unknown->output(), HasSubstr("key 'sonar.rate_hz': unknown key"));
+  const auto no_file = RunToEnd(
+      {BinPath("stickrep-virtual-robot"), "--domain", "31", "--set", "source=replay"});
+  EXPECT_EQ(no_file->exit_code(), 2);
+  EXPECT_THAT(no_file->output(), HasSubstr("name a recording"));
+  const auto missing =
+      RunToEnd({BinPath("stickrep-virtual-robot"), "--domain", "31", "--set", "source=replay",
+                "--set", "replay.file=/nonexistent/run.db3"});
+  EXPECT_EQ(missing->exit_code(), 2);
+  EXPECT_THAT(missing->output(), HasSubstr("/nonexistent/run.db3: no such recording"));
+}
+
 TEST_F(BadConfigTest, QosProfileThatDoesNotExistExitsWithCode2) {
   std::string qos = "qos:\n  profiles:\n    sensor:\n      reliability: best_effort\n"
                     "      durability: volatile\n      history_depth: 5\n      deadline_s: 0\n"
