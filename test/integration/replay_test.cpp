@@ -110,19 +110,27 @@ class ReplayTest : public ProcessFixture {
   std::pair<Pose, std::string> Replay(const std::string& rate) {
     pose_.reset();
     auto pipeline = StartPipeline();
-    // Wait until the processes read the device streams, so the replay starts into them.
+    // Wait until the processes read the device streams and each other's streams, so the
+    // replay starts into a connected pipeline.
+    const std::map<std::string, std::pair<int, int>> wanted = {
+        {"device/camera/frame", {0, 1}}, {"device/sonar/echo", {0, 1}},
+        {"device/base/encoders", {0, 1}}, {"robot/sonar", {1, 3}},
+        {"robot/camera/image", {1, 1}},  {"robot/odometry", {1, 3}},
+        {"perception/landmark", {1, 1}}};
     EXPECT_TRUE(SpinUntil(
         [&] {
-          int ready = 0;
+          std::size_t ready = 0;
           for (const auto& t : Topics()) {
-            if ((t.topic == "device/camera/frame" || t.topic == "device/sonar/echo" ||
-                 t.topic == "device/base/encoders") && t.readers >= 1) {
+            const auto w = wanted.find(t.topic);
+            if (w != wanted.end() && t.writers >= w->second.first &&
+                t.readers >= w->second.second) {
               ready++;
             }
           }
-          return ready == 3;
+          return ready == wanted.size();
         },
-        20.0));
+        20.0))
+        << Outputs();
     launch::ChildProcess& replay =
         Start("stickrep-replay", {"--system", system_, recording_, "--rate", rate,
                                   "--topics", kRecordedTopics, "--wait", "2"});
