@@ -15,10 +15,9 @@ namespace stickrep::recording {
 
 namespace {
 
-// Metadata entries too long for a summary (files' texts, IDL) are named, not shown.
-bool ShortEntry(const std::string& key, const std::string& value) {
-  return value.size() <= 200 && key.rfind("idl/", 0) != 0 &&
-         key.find(".text") == std::string::npos;
+// The files' texts and the IDL are left out of a summary (stickrep-bag info).
+bool ShortEntry(const std::string& key, const std::string&) {
+  return key.rfind("idl/", 0) != 0 && key.find(".text") == std::string::npos;
 }
 
 const bag::TopicInfo& FindTopic(const bag::BagReader& reader, const std::string& topic) {

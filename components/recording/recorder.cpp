@@ -72,6 +72,14 @@ QosProfile RecorderQos(const std::vector<runtime::DiscoveredEndpoint>& writers) 
   return q;
 }
 
+// One recorded topic: its row (made with its first sample, so the file lists what was
+// recorded) and its tally.
+struct Subscription {
+  bag::TopicInfo info;
+  std::int64_t id = -1;
+  TopicTally* tally = nullptr;
+};
+
 class Session {
  public:
   Session(const RecordOptions& o, std::ostream& log)
@@ -155,7 +163,7 @@ class Session {
   void Subscribe() {
     std::map<std::string, std::vector<runtime::DiscoveredEndpoint>> writers;
     for (const auto& e : domain_.listener->Endpoints()) {
-      if (e.is_writer && Wanted(e.topic) && topic_ids_.count(e.topic) == 0) {
+      if (e.is_writer && Wanted(e.topic) && subscriptions_.count(e.topic) == 0) {
         writers[e.topic].push_back(e);
       }
     }
@@ -175,28 +183,27 @@ class Session {
 
   void AddTopic(const std::string& topic, const console::MessageType& type,
                 const std::vector<runtime::DiscoveredEndpoint>& writers, const QosProfile& qos) {
-    bag::TopicInfo info;
-    info.name = topic;
-    info.type = type.name;
-    info.offered_qos_profiles = OfferedQos(writers).dump();
-    const std::int64_t id = bag_.AddTopic(info);
-    topic_ids_[topic] = id;
-    TopicTally& tally = report_.topics[topic];
-    tally.type = type.name;
+    Subscription& sub = subscriptions_[topic];
+    sub.info.name = topic;
+    sub.info.type = type.name;
+    sub.info.offered_qos_profiles = OfferedQos(writers).dump();
+    sub.tally = &report_.topics[topic];
+    sub.tally->type = type.name;
     readers_.push_back(std::make_unique<runtime::RawReader>(
         *domain_.participant, executor_, topic, type.make_support, qos,
-        [this, id, &tally](const runtime::RawSample& m, const runtime::RawSampleInfo& i) {
-          Store(id, tally, m, i);
+        [this, &sub](const runtime::RawSample& m, const runtime::RawSampleInfo& i) {
+          Store(sub, m, i);
         }));
-    fmt::print(log_, "stickrep-record: recording {} ({})\n", topic, type.name);
+    fmt::print(log_, "stickrep-record: subscribed to {} ({})\n", topic, type.name);
   }
 
-  void Store(std::int64_t id, TopicTally& tally, const runtime::RawSample& m,
-             const runtime::RawSampleInfo& i) {
+  void Store(Subscription& sub, const runtime::RawSample& m, const runtime::RawSampleInfo& i) {
+    TopicTally& tally = *sub.tally;
     tally.received++;
     if (!failure_.empty()) return;
     try {
-      bag_.Write(id, i.source_ns, i.reception_ns, m.data.data(), m.data.size());
+      if (sub.id < 0) sub.id = bag_.AddTopic(sub.info);
+      bag_.Write(sub.id, i.source_ns, i.reception_ns, m.data.data(), m.data.size());
       batch_.push_back({&tally, m.data.size()});
       pending_ = true;
     } catch (const InputError& e) {
@@ -232,13 +239,19 @@ class Session {
   void StoreDiscoveredQos() {
     std::map<std::string, std::vector<runtime::DiscoveredEndpoint>> writers;
     for (const auto& e : domain_.listener->Endpoints()) {
-      if (e.is_writer && topic_ids_.count(e.topic)) writers[e.topic].push_back(e);
+      const auto sub = subscriptions_.find(e.topic);
+      if (e.is_writer && sub != subscriptions_.end() && sub->second.id >= 0) {
+        writers[e.topic].push_back(e);
+      }
     }
     try {
-      for (const auto& [topic, ws] : writers) bag_.SetTopicQos(topic_ids_[topic], OfferedQos(ws).dump());
+      for (const auto& [topic, ws] : writers) {
+        bag_.SetTopicQos(subscriptions_[topic].id, OfferedQos(ws).dump());
+      }
       bag_.Flush();
-    } catch (const InputError&) {
+    } catch (const InputError& e) {
       // A full file: the catalogue's QoS stays recorded.
+      fmt::print(log_, "stickrep-record: the writers' QoS was not stored: {}\n", e.what());
     }
   }
 
@@ -275,8 +288,9 @@ class Session {
       bag_.SetMetadata("counts", counts.dump());
       if (!failure_.empty()) bag_.SetMetadata("ended_by", failure_);
       bag_.Flush();
-    } catch (const InputError&) {
+    } catch (const InputError& e) {
       // A full file takes no metadata either; the samples committed are there.
+      fmt::print(log_, "stickrep-record: the closing metadata was not written: {}\n", e.what());
     }
   }
 
@@ -286,7 +300,7 @@ class Session {
   bag::BagWriter bag_;
   runtime::Executor executor_;
   std::vector<std::unique_ptr<runtime::RawReader>> readers_;
-  std::map<std::string, std::int64_t> topic_ids_;
+  std::map<std::string, Subscription> subscriptions_;
   std::set<std::string> unknown_;
   std::vector<std::pair<TopicTally*, std::size_t>> batch_;
   bool pending_ = false;
@@ -311,15 +325,21 @@ void PrintRecordReport(const RecordReport& report, std::ostream& out) {
   fmt::print(out, "{:<28} {:<36} {:>9} {:>9} {:>6}\n", "TOPIC", "TYPE", "RECEIVED", "STORED",
              "LOST");
   std::uint64_t received = 0, stored = 0, lost = 0;
+  int silent = 0;
   for (const auto& [topic, t] : report.topics) {
+    if (t.received == 0) {
+      silent++;
+      continue;
+    }
     fmt::print(out, "{:<28} {:<36} {:>9} {:>9} {:>6}\n", topic, t.type, t.received, t.stored,
                t.lost);
     received += t.received;
     stored += t.stored;
     lost += t.lost;
   }
-  fmt::print(out, "{} topics, {} samples received, {} stored, {} lost on the way; {:.1f} MB in "
-             "{:.1f} s ({:.2f} MB/s)\n", report.topics.size(), received, stored, lost,
+  fmt::print(out, "{} topics ({} more subscribed, nothing received), {} samples received, {} "
+             "stored, {} lost on the way; {:.1f} MB in {:.1f} s ({:.2f} MB/s)\n",
+             report.topics.size() - silent, silent, received, stored, lost,
              report.bytes / 1e6, report.duration_s,
              report.duration_s > 0 ? report.bytes / 1e6 / report.duration_s : 0.0);
   if (!report.failure.empty()) {

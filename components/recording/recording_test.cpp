@@ -6,6 +6,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <thread>
 
@@ -18,6 +19,7 @@
 #include "recording/replayer.h"
 #include "runtime/endpoint.h"
 #include "runtime/test_domain.h"
+#include "perceptionPubSubTypes.h"
 #include "sensorsPubSubTypes.h"
 #include "systemPubSubTypes.h"
 
@@ -57,15 +59,17 @@ msgs::Image Frame(int k) {
   return img;
 }
 
-// Records for `duration_s` on a thread while `publish` runs on this one.
+// Records for `duration_s` on a thread while `publish` runs on this one; the duration leaves
+// several seconds for discovery before the samples are written.
 RecordReport RecordWhile(const RecordOptions& o, const std::function<void()>& publish) {
   RecordReport report;
-  std::thread recorder([&] {
-    std::ostringstream log;
-    report = Record(o, log);
-  });
+  std::ostringstream log;
+  std::thread recorder([&] { report = Record(o, log); });
   publish();
   recorder.join();
+  std::ostringstream printed;
+  PrintRecordReport(report, printed);
+  std::cout << log.str() << printed.str();
   return report;
 }
 
@@ -73,17 +77,18 @@ TEST(RecordingTest, RecordsEveryTopicUnchangedAndTheToolsReadIt) {
   const std::string file = TempPath("round_trip.db3");
   runtime::Participant p(ParticipantConfig{runtime::TestDomainId(), "publisher", "", "", {}},
                          Catalog());
-  runtime::Writer<msgs::SonarEchoPubSubType> echoes(p, "device/sonar/echo");
+  // Observations are reliable (counted exactly: nothing sent after matching may be lost);
+  // frames are best effort.
+  runtime::Writer<msgs::LandmarkObservationPubSubType> observations(p, "perception/landmark");
   runtime::Writer<msgs::ImagePubSubType> frames(p, "device/camera/frame");
-  const RecordReport report = RecordWhile(Options(file, 4.0), [&] {
-    ASSERT_TRUE(echoes.WaitForMatched(1, 5.0));
+  const RecordReport report = RecordWhile(Options(file, 8.0), [&] {
+    ASSERT_TRUE(observations.WaitForMatched(1, 5.0));
     ASSERT_TRUE(frames.WaitForMatched(1, 5.0));
     for (int k = 1; k <= 20; ++k) {
-      msgs::SonarEcho e;
-      std::array<float, 24> r;
-      r.fill(10.0f * k);
-      e.range_in(r);
-      echoes.Publish(e, 1000 * k);
+      msgs::LandmarkObservation o;
+      o.door_class(msgs::DOOR_36);
+      o.width_in(10.0 * k);
+      observations.Publish(o, 1000 * k);
       if (k % 4 == 0) {
         msgs::Image img = Frame(k);
         frames.Publish(img, 1000 * k);
@@ -92,17 +97,23 @@ TEST(RecordingTest, RecordsEveryTopicUnchangedAndTheToolsReadIt) {
     }
   });
   ASSERT_TRUE(report.failure.empty()) << report.failure;
-  EXPECT_EQ(report.topics.at("device/sonar/echo").stored, 20u);
-  EXPECT_EQ(report.topics.at("device/camera/frame").stored, 5u);
-  EXPECT_EQ(report.topics.at("device/sonar/echo").lost, 0u);
+  EXPECT_EQ(report.topics.at("perception/landmark").received, 20u);
+  EXPECT_EQ(report.topics.at("perception/landmark").stored, 20u);
+  EXPECT_EQ(report.topics.at("perception/landmark").lost, 0u);
+  const TopicTally& frames_tally = report.topics.at("device/camera/frame");
+  EXPECT_GT(frames_tally.stored, 0u);
+  EXPECT_EQ(frames_tally.stored, frames_tally.received);
+  // Every catalogued topic was subscribed; only the two that carried samples are in the file.
+  EXPECT_EQ(report.topics.at("localization/pose").received, 0u);
 
   const BagInfo info = InspectBag(file);
   ASSERT_EQ(info.topics.size(), 2u);
-  EXPECT_EQ(info.messages, 25);
+  EXPECT_EQ(info.messages, static_cast<std::int64_t>(20 + frames_tally.stored));
   EXPECT_EQ(info.metadata.count("stickrep_version"), 1u);
   EXPECT_EQ(info.metadata.count("counts"), 1u);
   bag::BagReader reader(file);
-  EXPECT_NE(reader.Metadata().at("idl/sensors.idl").find("struct SonarEcho"), std::string::npos);
+  EXPECT_NE(reader.Metadata().at("idl/perception.idl").find("struct LandmarkObservation"),
+            std::string::npos);
   EXPECT_NE(reader.Metadata().at("map_file.text").find("rings"), std::string::npos);
   for (const auto& t : reader.topics()) {
     EXPECT_NE(t.offered_qos_profiles.find("reliability"), std::string::npos) << t.name;
@@ -111,13 +122,14 @@ TEST(RecordingTest, RecordsEveryTopicUnchangedAndTheToolsReadIt) {
   std::ostringstream check;
   EXPECT_EQ(CheckBag(file, check), 0) << check.str();
   std::ostringstream lines, err;
-  EXPECT_EQ(ExportTopic(file, "device/sonar/echo", lines, err), 0);
+  EXPECT_EQ(ExportTopic(file, "perception/landmark", lines, err), 0);
   std::istringstream in(lines.str());
   std::string first;
   std::getline(in, first);
   const auto j = nlohmann::json::parse(first);
   EXPECT_EQ(j["header"]["sequence_number"], 1);
-  EXPECT_DOUBLE_EQ(j["range_in"][0].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(j["width_in"].get<double>(), 10.0);
+  EXPECT_EQ(j["door_class"], "DOOR_36");
   EXPECT_THROW(ExportTopic(file, "robot/sonar", lines, err), InputError);
 }
 
