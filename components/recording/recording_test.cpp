@@ -133,10 +133,10 @@ TEST(RecordingTest, RecordsEveryTopicUnchangedAndTheToolsReadIt) {
   EXPECT_THROW(ExportTopic(file, "robot/sonar", lines, err), InputError);
 }
 
-TEST(RecordingTest, ReplayPublishesTheRecordedPayloadsInOrder) {
-  const std::string file = TempPath("replay.db3");
+// A recording made by hand: 30 echoes 10 ms apart (stamps and sequence numbers k = 1..30),
+// serialized with the real type.
+void WriteEchoes(const std::string& file) {
   {
-    // A recording made by hand: 30 echoes 10 ms apart, serialized with the real type.
     bag::BagWriter w(file);
     const auto id = w.AddTopic({0, "device/sonar/echo", "stickrep::msgs::SonarEcho", "cdr",
                                 R"([{"reliability":"best_effort","durability":"volatile",)"
@@ -155,6 +155,11 @@ TEST(RecordingTest, ReplayPublishesTheRecordedPayloadsInOrder) {
       w.Write(id, k * 10'000'000LL, 0, payload.data, payload.length);
     }
   }
+}
+
+TEST(RecordingTest, ReplayPublishesTheRecordedPayloadsInOrder) {
+  const std::string file = TempPath("replay.db3");
+  WriteEchoes(file);
   runtime::Participant listener(
       ParticipantConfig{runtime::TestDomainId(), "listener", "", "", {}}, Catalog());
   runtime::Participant replaying(
@@ -196,6 +201,67 @@ TEST(RecordingTest, ReplayPublishesTheRecordedPayloadsInOrder) {
   // 290 ms of recording at rate 2.
   EXPECT_GT(r.duration_s, 0.12);
   EXPECT_NE(session.Summary().find("open loop: 0 wheel commands ignored"), std::string::npos);
+}
+
+TEST(RecordingTest, ReplayTakesAStretchRemapsAndLoops) {
+  const std::string file = TempPath("stretch.db3");
+  WriteEchoes(file);
+  runtime::Participant listener(
+      ParticipantConfig{runtime::TestDomainId(), "listener", "", "", {}}, Catalog());
+  runtime::Participant replaying(
+      ParticipantConfig{runtime::TestDomainId(), "replay", "", "", {}}, Catalog());
+  runtime::Executor ex, replay_ex;
+  std::vector<uint32_t> sequence;
+  // The echoes published on another topic (a catalogued one, for the test's reader).
+  runtime::Reader<msgs::SonarEchoPubSubType> reader(
+      listener, ex, "robot/sonar",
+      [&](const msgs::SonarEcho& e) { sequence.push_back(e.header().sequence_number()); });
+  ReplayOptions o;
+  o.file = file;
+  o.start_s = 0.1;      // from the sample at 110 ms (k = 11)
+  o.duration_s = 0.1;   // to the one at 210 ms (k = 21)
+  o.remap = {{"device/sonar/echo", "robot/sonar"}};
+  o.topics = {"device/sonar/echo"};
+  {
+    ReplaySession session(replaying, replay_ex, o);
+    session.replayer().Start();
+    ASSERT_TRUE(runtime::WaitFor([&] {
+      ex.SpinOnce(std::chrono::milliseconds(5));
+      return session.replayer().done();
+    }, 20.0));
+    runtime::WaitFor([&] {
+      ex.SpinOnce(std::chrono::milliseconds(5));
+      return sequence.size() >= 11;
+    }, 2.0);
+    session.replayer().Stop();
+    EXPECT_EQ(session.replayer().report().sent.at("robot/sonar"), 11u);
+  }
+  ASSERT_EQ(sequence.size(), 11u);
+  EXPECT_EQ(sequence.front(), 11u);
+  EXPECT_EQ(sequence.back(), 21u);
+
+  // Looping: the stretch again and again until stopped.
+  sequence.clear();
+  o.loop = true;
+  o.rate = 4.0;
+  ReplaySession looping(replaying, replay_ex, o);
+  looping.replayer().Start();
+  EXPECT_TRUE(runtime::WaitFor([&] {
+    ex.SpinOnce(std::chrono::milliseconds(5));
+    return sequence.size() >= 33;
+  }, 20.0));
+  looping.replayer().Stop();
+  EXPECT_GE(looping.replayer().report().passes, 3);
+  EXPECT_FALSE(looping.replayer().report().finished);
+  EXPECT_EQ(sequence[11], 11u);  // the second pass starts where the first did
+
+  // A remap of a topic the recording does not have, and a start past its end.
+  ReplayOptions bad = o;
+  bad.remap = {{"robot/nothing", "a/b"}};
+  EXPECT_THROW(Replayer(replaying, bad), InputError);
+  bad = o;
+  bad.start_s = 5.0;
+  EXPECT_THROW(Replayer(replaying, bad), InputError);
 }
 
 TEST(RecordingTest, BadReplayOptionsAreRefusedNamingTheOption) {
