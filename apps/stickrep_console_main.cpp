@@ -28,6 +28,23 @@ int main(int argc, char** argv) {
   echo->add_option("--count", o.count, "stop after this many samples")->check(CLI::NonNegativeNumber);
   echo->add_option("--timeout", o.timeout_s, "give up after this many seconds")
       ->check(CLI::NonNegativeNumber);
+  echo->add_flag_callback("--once", [&o] { o.count = 1; }, "print one sample and exit");
+  echo->add_option("--field", o.field, "print only this member (a.b, array indices as numbers)");
+  CLI::App* hz = app.add_subcommand("hz", "rate of a topic: mean, and min/max/std of the period");
+  CLI::App* delay = app.add_subcommand(
+      "delay", "delay of a topic from the writer's source timestamp to reception");
+  for (CLI::App* watch : {hz, delay}) {
+    watch->add_option("topic", topic, "e.g. robot/sonar")->required();
+    watch->add_option("--window", o.window, "samples in the sliding window (default 50)")
+        ->check(CLI::Range(2, 100000));
+    watch->add_option("--duration", o.duration_s, "stop after this many seconds (default: Ctrl-C)")
+        ->check(CLI::NonNegativeNumber);
+    watch->add_option("--timeout", o.timeout_s,
+                      "give up when no writer or no sample comes within this many seconds "
+                      "(default 10)")
+        ->check(CLI::NonNegativeNumber);
+    watch->add_flag("--json", o.json, "one JSON object per report");
+  }
   CLI::App* bw = app.add_subcommand(
       "bw", "samples, rate and serialized bytes/s of every topic that has a writer");
   bw->add_option("--wait", o.wait_s, "seconds to listen to discovery first")
@@ -51,6 +68,10 @@ int main(int argc, char** argv) {
     if (*list) return stickrep::console::ListTopics(o, std::cout);
     if (*bw) return stickrep::console::MeasureBandwidth(o, std::cout);
     if (*goal) return stickrep::console::SendGoal(o, goal_id, target, std::cout);
+    if (*hz) return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kRate, std::cout);
+    if (*delay) {
+      return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kDelay, std::cout);
+    }
     return stickrep::console::EchoTopic(o, topic, std::cout);
   } catch (const stickrep::InputError& e) {
     fmt::print(stderr, "stickrep-console: {}\n", e.what());

@@ -13,6 +13,7 @@
 #include "common/input_error.h"
 #include "console/message_json.h"
 #include "console/message_types.h"
+#include "console/topic_stats.h"
 #include "missionPubSubTypes.h"
 #include "runtime/endpoint.h"
 #include "runtime/raw_endpoint.h"
@@ -155,13 +156,23 @@ int ListTopics(const ConsoleOptions& o, std::ostream& out) {
   return 0;
 }
 
-int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& out) {
-  Session s = Join(o);
-  if (!s.participant->catalog().HasTopic(topic)) {
-    throw InputError(s.system.qos_file, 0, "qos.streams",
-                     "'" + topic + "' is not a StickRep topic (not in the QoS catalogue)");
-  }
-  // The type comes from discovery, so wait for a writer to announce it.
+namespace {
+
+// Refuses a topic that is not StickRep's, naming the close ones.
+void CheckTopicName(const Session& s, const std::string& topic) {
+  if (s.participant->catalog().HasTopic(topic)) return;
+  std::vector<std::string> known;
+  for (const auto& [name, stream] : s.participant->catalog().streams()) known.push_back(name);
+  const auto close = CloseNames(topic, known);
+  std::string hint;
+  for (const auto& c : close) hint += (hint.empty() ? "; did you mean: " : ", ") + c;
+  throw InputError(s.system.qos_file, 0, "qos.streams",
+                   "'" + topic + "' is not a StickRep topic (not in the QoS catalogue)" + hint);
+}
+
+// The type of `topic` as its writers announce it in discovery; nullptr (said on stderr) when
+// no writer appears within the timeout or the type is not one this console knows.
+const MessageType* WriterType(const Session& s, const std::string& topic, double timeout_s) {
   std::string type;
   const bool found = runtime::WaitFor(
       [&] {
@@ -170,23 +181,63 @@ int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& o
         }
         return !type.empty() || !runtime::KeepRunning().load();
       },
-      o.timeout_s > 0.0 ? o.timeout_s : 1e9);
+      timeout_s > 0.0 ? timeout_s : 1e9);
   if (!found || type.empty()) {
-    fmt::print(stderr, "no writer of {} appeared\n", topic);
-    return 1;
+    if (runtime::KeepRunning().load()) {
+      fmt::print(stderr, "no writer of {} appeared within {:g} s\n", topic, timeout_s);
+    }
+    return nullptr;
   }
   const MessageType* support = FindMessageType(type);
   if (support == nullptr) {
-    fmt::print(stderr, "{} carries {}, a type this console cannot print\n", topic, type);
-    return 1;
+    fmt::print(stderr, "{} carries {}, a type this console does not know\n", topic, type);
   }
+  return support;
+}
+
+// `--field a.b.0`: that member of a sample's JSON form; throws InputError when absent.
+nlohmann::json Field(const nlohmann::json& sample, const std::string& path) {
+  const nlohmann::json* at = &sample;
+  std::size_t begin = 0;
+  while (begin <= path.size()) {
+    const std::size_t dot = std::min(path.find('.', begin), path.size());
+    const std::string key = path.substr(begin, dot - begin);
+    if (at->is_object() && at->contains(key)) {
+      at = &(*at)[key];
+    } else if (at->is_array() && !key.empty() &&
+               key.find_first_not_of("0123456789") == std::string::npos &&
+               std::stoul(key) < at->size()) {
+      at = &(*at)[std::stoul(key)];
+    } else {
+      std::string members;
+      if (at->is_object()) {
+        for (const auto& [k, v] : at->items()) members += (members.empty() ? "" : ", ") + k;
+      }
+      throw InputError("--field", 0, path,
+                       "no member '" + key + "'" + (members.empty() ? "" : "; there are: " + members));
+    }
+    begin = dot + 1;
+  }
+  return *at;
+}
+
+}  // namespace
+
+int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& out) {
+  Session s = Join(o);
+  CheckTopicName(s, topic);
+  // The type comes from discovery, so wait for a writer to announce it.
+  const MessageType* support = WriterType(s, topic, o.timeout_s);
+  if (support == nullptr) return 1;
   runtime::Executor ex;
   int printed = 0;
   auto reader = ReadRaw(s, ex, topic, *support,
                         [&](const runtime::RawSample& m, const runtime::RawSampleInfo&) {
+                          if (o.count > 0 && printed >= o.count) return;
                           try {
-                            out << support->decode_json(m.data.data(), m.data.size()).dump()
-                                << '\n' << std::flush;
+                            const nlohmann::json j = support->decode_json(m.data.data(), m.data.size());
+                            out << (o.field.empty() ? j : Field(j, o.field)).dump() << '\n'
+                                << std::flush;
                             printed++;
                           } catch (const PayloadError& e) {
                             fmt::print(stderr, "{}: a sample dropped: {}\n", topic, e.what());
@@ -203,6 +254,85 @@ int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& o
   }
   reader.reset();
   return (o.count > 0 && printed < o.count) ? 1 : 0;
+}
+
+namespace {
+
+// One report line of `hz` or `delay` (JSON with --json).
+void PrintWindow(const ConsoleOptions& o, const std::string& topic, TopicStat stat,
+                 const TopicWindow& w, std::ostream& out) {
+  if (stat == TopicStat::kRate) {
+    const Spread p = w.Period();
+    const double rate = p.mean > 0.0 ? 1.0 / p.mean : 0.0;
+    if (o.json) {
+      out << nlohmann::json{{"topic", topic}, {"rate_hz", rate}, {"period_min_s", p.min},
+                            {"period_max_s", p.max}, {"period_std_s", p.stddev},
+                            {"window", p.n + 1}, {"samples", w.total()}}.dump()
+          << '\n' << std::flush;
+    } else {
+      fmt::print(out, "{}: average rate {:.3f} Hz; period min {:.4f} s, max {:.4f} s, std {:.5f} s "
+                 "(window {}, {} samples)\n", topic, rate, p.min, p.max, p.stddev, p.n + 1,
+                 w.total());
+    }
+    return;
+  }
+  const Spread d = w.DelayMs();
+  if (o.json) {
+    out << nlohmann::json{{"topic", topic}, {"delay_mean_ms", d.mean}, {"delay_min_ms", d.min},
+                          {"delay_max_ms", d.max}, {"delay_std_ms", d.stddev}, {"window", d.n},
+                          {"samples", w.total()}}.dump()
+        << '\n' << std::flush;
+  } else {
+    fmt::print(out, "{}: source timestamp to reception mean {:.3f} ms; min {:.3f}, max {:.3f}, "
+               "std {:.3f} ms (window {}, {} samples)\n", topic, d.mean, d.min, d.max, d.stddev,
+               d.n, w.total());
+  }
+}
+
+}  // namespace
+
+int WatchTopic(const ConsoleOptions& o, const std::string& topic, TopicStat stat,
+               std::ostream& out) {
+  Session s = Join(o);
+  CheckTopicName(s, topic);
+  const double timeout_s = o.timeout_s > 0.0 ? o.timeout_s : 10.0;
+  const MessageType* support = WriterType(s, topic, timeout_s);
+  if (support == nullptr) return 1;
+  runtime::Executor ex;
+  TopicWindow window(o.window);
+  auto reader = ReadRaw(s, ex, topic, *support,
+                        [&](const runtime::RawSample& m, const runtime::RawSampleInfo& i) {
+                          window.Add(i.source_ns, i.reception_ns, m.data.size());
+                        });
+  using Clock = runtime::Executor::Clock;
+  const auto start = Clock::now();
+  const auto seconds = [&](double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  };
+  const auto until = o.duration_s > 0.0 ? start + seconds(o.duration_s) : Clock::time_point::max();
+  auto next_report = start + seconds(1.0);
+  std::uint64_t reported = 0;
+  while (runtime::KeepRunning().load() && Clock::now() < until) {
+    ex.SpinOnce(std::chrono::milliseconds(20));
+    if (window.total() == 0 && Clock::now() > start + seconds(timeout_s)) {
+      fmt::print(stderr, "{}: a writer but no sample within {:g} s\n", topic, timeout_s);
+      return 1;
+    }
+    if (Clock::now() >= next_report) {
+      next_report += seconds(1.0);
+      if (window.total() > reported && (stat == TopicStat::kDelay || window.total() > 1)) {
+        PrintWindow(o, topic, stat, window, out);
+        reported = window.total();
+      }
+    }
+  }
+  reader.reset();
+  if (window.total() == 0) {
+    fmt::print(stderr, "{}: no sample received\n", topic);
+    return runtime::KeepRunning().load() ? 1 : 0;
+  }
+  PrintWindow(o, topic, stat, window, out);
+  return 0;
 }
 
 int SendGoal(const ConsoleOptions& o, const std::string& goal_id, const std::string& target,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -20,6 +21,9 @@ struct ConsoleOptions {
   int count = 0;               // `echo`: stop after this many samples (0: until stopped)
   double timeout_s = 0.0;      // `echo`: give up after this long (0: never)
   bool json = false;
+  std::string field;           // `echo --field a.b`: print only that member
+  std::size_t window = 50;     // `hz`, `delay`: samples in the sliding window
+  double duration_s = 0.0;     // `hz`, `delay`: stop after this long (0: until Ctrl-C)
   // Fast DDS profile and discovery servers; the console joins a discovery-server deployment
   // as a super client (deploy/fastdds/discovery_client.xml) so that it sees every topic.
   runtime::DeploymentOptions deployment;
@@ -46,6 +50,13 @@ int ListTopics(const ConsoleOptions& options, std::ostream& out);
 
 // `echo TOPIC`: one JSON line per sample until the count, the timeout or a signal.
 int EchoTopic(const ConsoleOptions& options, const std::string& topic, std::ostream& out);
+
+// `hz TOPIC` / `delay TOPIC`: every second, the rate with the min, max and standard
+// deviation of the period, or the delay from the writer's source timestamp to reception,
+// over the last `window` samples. 1 when no writer or no sample comes within timeout_s.
+enum class TopicStat { kRate, kDelay };
+int WatchTopic(const ConsoleOptions& options, const std::string& topic, TopicStat stat,
+               std::ostream& out);
 
 // `bw`: every topic that has a writer, subscribed for timeout_s (default 10 s) after
 // listening to discovery for wait_s: samples, rate, mean serialized size and bytes/s.

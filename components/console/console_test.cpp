@@ -3,9 +3,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <iostream>
 #include <sstream>
+#include <thread>
 
+#include "common/input_error.h"
 #include "console/message_json.h"
+#include "console/topic_stats.h"
+#include "runtime/endpoint.h"
+#include "runtime/test_domain.h"
 
 namespace stickrep::console {
 namespace {
@@ -63,6 +70,122 @@ TEST(ConsoleTest, ImageJsonCarriesShapeNotPixels) {
   const auto j = ToJson(img);
   EXPECT_EQ(j["data_bytes"], 8);
   EXPECT_FALSE(j.contains("data"));
+}
+
+}  // namespace
+}  // namespace stickrep::console
+
+namespace stickrep::console {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(TopicWindowTest, RateAndPeriodSpreadFromReceptionTimes) {
+  TopicWindow w(4);
+  // Receptions 100 ms apart but one 200 ms gap; each 2 ms after its source time.
+  const std::int64_t ms = 1'000'000;
+  for (std::int64_t t : {0, 100, 200, 400, 500}) w.Add(t * ms, t * ms + 2 * ms, 10);
+  EXPECT_EQ(w.total(), 5u);
+  const Spread p = w.Period();  // the last 4 samples: periods 0.1, 0.2, 0.1
+  EXPECT_EQ(p.n, 3u);
+  EXPECT_NEAR(p.mean, 0.4 / 3, 1e-9);
+  EXPECT_NEAR(p.min, 0.1, 1e-9);
+  EXPECT_NEAR(p.max, 0.2, 1e-9);
+  EXPECT_GT(p.stddev, 0.04);
+  const Spread d = w.DelayMs();
+  EXPECT_NEAR(d.mean, 2.0, 1e-9);
+  EXPECT_NEAR(d.stddev, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(w.MeanBytes(), 10.0);
+}
+
+TEST(TopicWindowTest, CloseNamesSuggestMistypedTopics) {
+  const std::vector<std::string> known = {"robot/sonar", "robot/odometry", "device/sonar/echo",
+                                          "localization/pose"};
+  const auto close = CloseNames("robot/sonr", known);
+  ASSERT_FALSE(close.empty());
+  EXPECT_EQ(close.front(), "robot/sonar");
+  EXPECT_TRUE(CloseNames("zzzzzzzzzzzzzzzzzzzzzz", known).empty());
+}
+
+// The verbs against a live writer on a domain of this test process's own.
+class ConsoleLiveTest : public ::testing::Test {
+ protected:
+  ConsoleLiveTest()
+      : publisher_(runtime::ParticipantConfig{runtime::TestDomainId(), "publisher", "", "", {}},
+                   runtime::QosCatalog::LoadFile(runtime::DefaultConfigDir() + "/qos.yaml")),
+        odometry_(publisher_, "robot/odometry") {
+    options_.system_file = runtime::DefaultConfigDir() + "/system.yaml";
+    options_.domain_id = runtime::TestDomainId();
+    options_.timeout_s = 10.0;
+    running_ = true;
+    // 20 Hz until the test ends.
+    thread_ = std::thread([this] {
+      for (int k = 1; running_; ++k) {
+        msgs::Odometry o;
+        o.distance_in(k * 1.5);
+        odometry_.Publish(o, k);
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    });
+  }
+  ~ConsoleLiveTest() override {
+    running_ = false;
+    thread_.join();
+  }
+
+  runtime::Participant publisher_;
+  runtime::Writer<msgs::OdometryPubSubType> odometry_;
+  ConsoleOptions options_;
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+};
+
+TEST_F(ConsoleLiveTest, HzMeasuresTheWritersRate) {
+  options_.duration_s = 2.5;
+  options_.json = true;
+  std::ostringstream out;
+  ASSERT_EQ(WatchTopic(options_, "robot/odometry", TopicStat::kRate, out), 0);
+  std::istringstream lines(out.str());
+  std::string line, last;
+  while (std::getline(lines, line)) last = line;
+  const auto j = nlohmann::json::parse(last);
+  // 20 Hz written; the machine may stretch a period, never to half the rate on average.
+  EXPECT_GT(j["rate_hz"].get<double>(), 12.0) << out.str();
+  EXPECT_LT(j["rate_hz"].get<double>(), 22.0) << out.str();
+  EXPECT_GT(j["period_max_s"].get<double>(), j["period_min_s"].get<double>());
+}
+
+TEST_F(ConsoleLiveTest, DelayIsSourceTimestampToReception) {
+  options_.duration_s = 1.5;
+  std::ostringstream out;
+  ASSERT_EQ(WatchTopic(options_, "robot/odometry", TopicStat::kDelay, out), 0);
+  EXPECT_THAT(out.str(), HasSubstr("robot/odometry: source timestamp to reception mean"));
+}
+
+TEST_F(ConsoleLiveTest, EchoOnceWithAField) {
+  options_.count = 1;
+  options_.field = "distance_in";
+  std::ostringstream out;
+  ASSERT_EQ(EchoTopic(options_, "robot/odometry", out), 0);
+  const double d = std::stod(out.str());
+  EXPECT_GT(d, 0.0);
+  options_.field = "header.nope";
+  EXPECT_THROW(EchoTopic(options_, "robot/odometry", out), InputError);
+}
+
+TEST_F(ConsoleLiveTest, AnUnknownTopicIsRefusedWithTheCloseNames) {
+  try {
+    WatchTopic(options_, "robot/odometri", TopicStat::kRate, std::cout);
+    FAIL() << "an unknown topic was watched";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("did you mean: robot/odometry"));
+  }
+}
+
+TEST_F(ConsoleLiveTest, NoWriterWithinTheTimeoutIsExit1) {
+  options_.timeout_s = 1.0;
+  std::ostringstream out;
+  EXPECT_EQ(WatchTopic(options_, "localization/pose", TopicStat::kRate, out), 1);
 }
 
 }  // namespace
