@@ -45,6 +45,20 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     watch->add_flag("--json", o.json, "one JSON object per report");
   }
+  CLI::App* info = app.add_subcommand("info", "every writer and reader of a topic, with QoS");
+  bool verbose = false;
+  info->add_option("topic", topic, "e.g. robot/sonar")->required();
+  info->add_flag("-v,--verbose", verbose, "add GUIDs and types");
+  info->add_option("--wait", o.wait_s, "seconds to listen to discovery")->check(CLI::PositiveNumber);
+  info->add_flag("--json", o.json, "JSON instead of a table");
+  CLI::App* status = app.add_subcommand(
+      "status", "one line per process from its heartbeat, refreshing (Ctrl-C ends)");
+  status->add_flag_callback("--once", [&o] { o.count = 1; }, "print once and exit");
+  status->add_option("--duration", o.duration_s, "stop after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  status->add_option("--timeout", o.timeout_s, "exit 1 when no heartbeat comes in this long")
+      ->check(CLI::NonNegativeNumber);
+  status->add_flag("--json", o.json, "one JSON array per refresh");
   CLI::App* bw = app.add_subcommand(
       "bw", "samples, rate and serialized bytes/s of every topic that has a writer");
   bw->add_option("--wait", o.wait_s, "seconds to listen to discovery first")
@@ -68,6 +82,8 @@ int main(int argc, char** argv) {
     if (*list) return stickrep::console::ListTopics(o, std::cout);
     if (*bw) return stickrep::console::MeasureBandwidth(o, std::cout);
     if (*goal) return stickrep::console::SendGoal(o, goal_id, target, std::cout);
+    if (*info) return stickrep::console::InfoTopic(o, topic, verbose, std::cout);
+    if (*status) return stickrep::console::ShowStatus(o, std::cout);
     if (*hz) return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kRate, std::cout);
     if (*delay) {
       return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kDelay, std::cout);

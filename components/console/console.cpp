@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <tuple>
 #include <ostream>
 
 #include "common/input_error.h"
@@ -15,6 +16,7 @@
 #include "console/message_types.h"
 #include "console/topic_stats.h"
 #include "missionPubSubTypes.h"
+#include "systemPubSubTypes.h"
 #include "runtime/endpoint.h"
 #include "runtime/raw_endpoint.h"
 #include "runtime/process.h"
@@ -332,6 +334,128 @@ int WatchTopic(const ConsoleOptions& o, const std::string& topic, TopicStat stat
     return runtime::KeepRunning().load() ? 1 : 0;
   }
   PrintWindow(o, topic, stat, window, out);
+  return 0;
+}
+
+namespace {
+
+// Each process's latest heartbeat (system/status is transient-local, so a console that
+// joins late gets them at once), read for `listen_s`.
+std::map<std::string, msgs::ComponentStatus> Heartbeats(Session& s, runtime::Executor& ex,
+                                                         double listen_s) {
+  std::map<std::string, msgs::ComponentStatus> latest;
+  runtime::Reader<msgs::ComponentStatusPubSubType> status(
+      *s.participant, ex, "system/status",
+      [&](const msgs::ComponentStatus& m) { latest[m.component_name()] = m; });
+  ex.Spin(runtime::KeepRunning(),
+          runtime::Executor::Clock::now() +
+              std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                  std::chrono::duration<double>(listen_s)));
+  return latest;
+}
+
+// "stickrep-landmark" -> the host its heartbeat names.
+std::string HostOf(const std::string& participant,
+                   const std::map<std::string, msgs::ComponentStatus>& heartbeats) {
+  const std::string prefix = "stickrep-";
+  const std::string name =
+      participant.rfind(prefix, 0) == 0 ? participant.substr(prefix.size()) : participant;
+  const auto h = heartbeats.find(name);
+  return h == heartbeats.end() ? "?" : h->second.host();
+}
+
+}  // namespace
+
+int InfoTopic(const ConsoleOptions& o, const std::string& topic, bool verbose, std::ostream& out) {
+  Session s = Join(o);
+  CheckTopicName(s, topic);
+  runtime::Executor ex;
+  const auto heartbeats = Heartbeats(s, ex, o.wait_s);
+  std::vector<runtime::DiscoveredEndpoint> endpoints;
+  for (const auto& e : s.listener->Endpoints()) {
+    if (e.topic == topic) endpoints.push_back(e);
+  }
+  std::sort(endpoints.begin(), endpoints.end(), [](const auto& a, const auto& b) {
+    return std::tie(b.is_writer, a.participant) < std::tie(a.is_writer, b.participant);
+  });
+  if (o.json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& e : endpoints) {
+      list.push_back({{"role", e.is_writer ? "writer" : "reader"}, {"process", e.participant},
+                      {"host", HostOf(e.participant, heartbeats)}, {"type", e.type},
+                      {"reliability", e.reliability}, {"durability", e.durability},
+                      {"history", runtime::UserDataField(e.user_data, "history")},
+                      {"deadline_s", e.deadline_s}, {"liveliness_lease_s", e.liveliness_lease_s},
+                      {"profile", runtime::UserDataField(e.user_data, "profile")},
+                      {"guid", e.guid}});
+    }
+    out << nlohmann::json{{"topic", topic}, {"endpoints", list}}.dump(2) << '\n';
+    return 0;
+  }
+  fmt::print(out, "{}: {} writers, {} readers\n", topic,
+             std::count_if(endpoints.begin(), endpoints.end(), [](const auto& e) { return e.is_writer; }),
+             std::count_if(endpoints.begin(), endpoints.end(), [](const auto& e) { return !e.is_writer; }));
+  fmt::print(out, "{:<7} {:<24} {:<10} {:<11} {:<15} {:<11} {:<8} {:<9} {:<13}{}\n", "ROLE",
+             "PROCESS", "HOST", "RELIABILITY", "DURABILITY", "HISTORY", "DEADLINE", "LIVELINESS",
+             "PROFILE", verbose ? " GUID / TYPE" : "");
+  for (const auto& e : endpoints) {
+    const std::string history = runtime::UserDataField(e.user_data, "history");
+    const std::string profile = runtime::UserDataField(e.user_data, "profile");
+    fmt::print(out, "{:<7} {:<24} {:<10} {:<11} {:<15} {:<11} {:<8} {:<9} {:<13}{}\n",
+               e.is_writer ? "writer" : "reader", e.participant.empty() ? "?" : e.participant,
+               HostOf(e.participant, heartbeats), e.reliability, e.durability,
+               history.empty() ? "?" : history, Seconds(e.deadline_s),
+               Seconds(e.liveliness_lease_s), profile.empty() ? "-" : profile,
+               verbose ? " " + e.guid + " " + e.type : "");
+  }
+  return 0;
+}
+
+int ShowStatus(const ConsoleOptions& o, std::ostream& out) {
+  Session s = Join(o);
+  runtime::Executor ex;
+  std::map<std::string, std::pair<msgs::ComponentStatus, int64_t>> latest;  // with reception
+  runtime::Reader<msgs::ComponentStatusPubSubType> status(
+      *s.participant, ex, "system/status", [&](const msgs::ComponentStatus& m) {
+        latest[m.component_name()] = {m, runtime::WallClockNowNs()};
+      });
+  using Clock = runtime::Executor::Clock;
+  const auto seconds = [](double v) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(v));
+  };
+  const auto start = Clock::now();
+  const auto until = o.duration_s > 0.0 ? start + seconds(o.duration_s) : Clock::time_point::max();
+  const double timeout_s = o.timeout_s > 0.0 ? o.timeout_s : 10.0;
+  do {
+    ex.Spin(runtime::KeepRunning(), Clock::now() + seconds(std::max(1.0, o.wait_s)));
+    if (latest.empty()) {
+      if (Clock::now() - start < seconds(timeout_s)) continue;
+      fmt::print(stderr, "no process heartbeat on system/status within {:g} s\n", timeout_s);
+      return 1;
+    }
+    const int64_t now = runtime::WallClockNowNs();
+    nlohmann::json rows = nlohmann::json::array();
+    if (!o.json) {
+      fmt::print(out, "{:<14} {:<10} {:<12} {:>7} {:>10} {:>10} {:>8}  {}\n", "PROCESS", "HOST",
+                 "STATE", "AGE S", "IN", "OUT", "DROPPED", "MESSAGE");
+    }
+    for (const auto& [name, entry] : latest) {
+      const auto& [m, received_ns] = entry;
+      const double age_s = (now - received_ns) * 1e-9;
+      if (o.json) {
+        rows.push_back({{"process", name}, {"host", m.host()}, {"state", Name(m.state())},
+                        {"heartbeat_age_s", age_s}, {"samples_in", m.samples_in()},
+                        {"samples_out", m.samples_out()},
+                        {"samples_dropped", m.samples_dropped()}, {"message", m.message()}});
+      } else {
+        fmt::print(out, "{:<14} {:<10} {:<12} {:>7.1f} {:>10} {:>10} {:>8}  {}\n", name, m.host(),
+                   Name(m.state()), age_s, m.samples_in(), m.samples_out(), m.samples_dropped(),
+                   m.message());
+      }
+    }
+    if (o.json) out << rows.dump() << '\n';
+    out << std::flush;
+  } while (o.count != 1 && runtime::KeepRunning().load() && Clock::now() < until);
   return 0;
 }
 

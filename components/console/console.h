@@ -58,6 +58,16 @@ enum class TopicStat { kRate, kDelay };
 int WatchTopic(const ConsoleOptions& options, const std::string& topic, TopicStat stat,
                std::ostream& out);
 
+// `info TOPIC`: every writer and reader of the topic with its process, host (from the
+// processes' heartbeats) and QoS; `verbose` adds GUIDs and types.
+int InfoTopic(const ConsoleOptions& options, const std::string& topic, bool verbose,
+              std::ostream& out);
+
+// `status`: one line per process from system/status (host, state, heartbeat age, samples
+// in/out/dropped, last warning), again every wait_s (at least 1 s) until Ctrl-C or
+// duration_s; once with count 1. 1 when no heartbeat comes within timeout_s.
+int ShowStatus(const ConsoleOptions& options, std::ostream& out);
+
 // `bw`: every topic that has a writer, subscribed for timeout_s (default 10 s) after
 // listening to discovery for wait_s: samples, rate, mean serialized size and bytes/s.
 int MeasureBandwidth(const ConsoleOptions& options, std::ostream& out);

@@ -8,10 +8,14 @@
 #include <sstream>
 #include <thread>
 
+#include <spdlog/spdlog.h>
+
 #include "common/input_error.h"
 #include "console/message_json.h"
 #include "console/topic_stats.h"
 #include "runtime/endpoint.h"
+#include "runtime/process.h"
+#include "runtime/status_reporter.h"
 #include "runtime/test_domain.h"
 
 namespace stickrep::console {
@@ -180,6 +184,36 @@ TEST_F(ConsoleLiveTest, AnUnknownTopicIsRefusedWithTheCloseNames) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("did you mean: robot/odometry"));
   }
+}
+
+TEST_F(ConsoleLiveTest, InfoNamesEachEndpointsProcessHostAndQos) {
+  // A heartbeat names the publisher's host, as every StickRep process's does.
+  auto log = spdlog::default_logger();
+  runtime::SampleCounters counters(log);
+  runtime::StatusReporter heartbeat(publisher_, "publisher", "robot-a", counters);
+  heartbeat.Publish(runtime::StatusReporter::State::kActive, "active; last warning: test");
+  options_.wait_s = 1.5;
+  options_.json = true;
+  std::ostringstream out;
+  ASSERT_EQ(InfoTopic(options_, "robot/odometry", false, out), 0);
+  const auto j = nlohmann::json::parse(out.str());
+  ASSERT_EQ(j["endpoints"].size(), 1u) << out.str();
+  const auto& w = j["endpoints"][0];
+  EXPECT_EQ(w["role"], "writer");
+  EXPECT_EQ(w["process"], "publisher");
+  EXPECT_EQ(w["host"], "robot-a");
+  EXPECT_EQ(w["reliability"], "best_effort");
+  EXPECT_EQ(w["history"], "keep_last 5");
+  EXPECT_EQ(w["profile"], "sensor");
+
+  std::ostringstream status;
+  options_.json = false;
+  options_.count = 1;
+  ASSERT_EQ(ShowStatus(options_, status), 0);
+  EXPECT_THAT(status.str(), HasSubstr("publisher"));
+  EXPECT_THAT(status.str(), HasSubstr("robot-a"));
+  EXPECT_THAT(status.str(), HasSubstr("ACTIVE"));
+  EXPECT_THAT(status.str(), HasSubstr("last warning: test"));
 }
 
 TEST_F(ConsoleLiveTest, NoWriterWithinTheTimeoutIsExit1) {

@@ -51,6 +51,7 @@ void DiscoveryListener::on_publisher_discovery(dds::DomainParticipant*,
   e.topic = info.info.topicName().to_string();
   e.type = info.info.typeName().to_string();
   e.is_writer = true;
+  e.guid = guid;
   FillQos(info.info.m_qos, e);
   by_guid_[guid] = e;
 }
@@ -67,6 +68,7 @@ void DiscoveryListener::on_subscriber_discovery(dds::DomainParticipant*,
   e.topic = info.info.topicName().to_string();
   e.type = info.info.typeName().to_string();
   e.is_writer = false;
+  e.guid = guid;
   FillQos(info.info.m_qos, e);
   by_guid_[guid] = e;
 }
@@ -115,7 +117,13 @@ int DiscoveryListener::ServersReached() const {
 std::vector<DiscoveredEndpoint> DiscoveryListener::Endpoints() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<DiscoveredEndpoint> out;
-  for (const auto& [guid, e] : by_guid_) out.push_back(e);
+  for (const auto& [guid, e] : by_guid_) {
+    out.push_back(e);
+    // The GUID's first 12 bytes are the participant's prefix ("01.0f.....|0.0.1.3").
+    const auto bar = guid.find('|');
+    const auto p = participants_.find(guid.substr(0, bar));
+    if (p != participants_.end()) out.back().participant = p->second;
+  }
   return out;
 }
 

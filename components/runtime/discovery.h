@@ -20,6 +20,8 @@ struct DiscoveredEndpoint {
   double deadline_s = 0.0;       // 0: none
   double liveliness_lease_s = 0; // 0: infinite
   std::string user_data;         // StickRep endpoints carry their profile and history here
+  std::string guid;              // the endpoint's DDS GUID, as text
+  std::string participant;       // its participant's name ("stickrep-landmark"), "" if unknown
 };
 
 // Everything known of one topic, summed over its endpoints.

@@ -23,6 +23,7 @@ namespace stickrep::runtime {
 void SampleCounters::Drop(const std::string& topic, const std::string& reason) {
   dropped_++;
   const uint64_t n = ++by_reason_[topic + ": " + reason];
+  last_warning_ = "dropped a sample on " + topic + ": " + reason;
   if (n <= 3 || n % 100 == 0) {
     log_->warn("dropped a sample on {}: {} ({} so far for this reason)", topic, reason, n);
   }
@@ -160,8 +161,13 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
 
     node->Activate();
     status.Publish(StatusReporter::State::kActive, "active");
-    executor.AddTimer(kHeartbeatPeriodS,
-                     [&] { status.Publish(StatusReporter::State::kActive, "active"); });
+    // The heartbeat says what last went wrong, so a console's `status` shows it.
+    executor.AddTimer(kHeartbeatPeriodS, [&] {
+      status.Publish(StatusReporter::State::kActive,
+                     counters.last_warning().empty()
+                         ? "active"
+                         : "active; last warning: " + counters.last_warning());
+    });
     log->info("active");
     const auto until = options.run_for_s > 0.0
                            ? Executor::Clock::now() +

@@ -29,6 +29,8 @@ class SampleCounters {
   uint64_t out() const { return out_; }
   uint64_t dropped() const { return dropped_; }
   const std::map<std::string, uint64_t>& dropped_by_reason() const { return by_reason_; }
+  // The last drop, as warned ("dropped a sample on T: reason"); empty before the first.
+  const std::string& last_warning() const { return last_warning_; }
 
  private:
   std::shared_ptr<spdlog::logger> log_;
@@ -36,6 +38,7 @@ class SampleCounters {
   uint64_t out_ = 0;
   uint64_t dropped_ = 0;
   std::map<std::string, uint64_t> by_reason_;
+  std::string last_warning_;
 };
 
 // What a process's node gets when it is configured: the DDS participant, the executor that
