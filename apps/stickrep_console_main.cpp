@@ -59,6 +59,12 @@ int main(int argc, char** argv) {
   status->add_option("--timeout", o.timeout_s, "exit 1 when no heartbeat comes in this long")
       ->check(CLI::NonNegativeNumber);
   status->add_flag("--json", o.json, "one JSON array per refresh");
+  CLI::App* doctor = app.add_subcommand(
+      "doctor", "QoS that do not match, type mismatches, readers without writers and writers "
+                "without readers");
+  doctor->add_option("--wait", o.wait_s, "seconds to listen to discovery")
+      ->check(CLI::PositiveNumber);
+  doctor->add_flag("--json", o.json, "JSON instead of lines");
   CLI::App* bw = app.add_subcommand(
       "bw", "samples, rate and serialized bytes/s of every topic that has a writer");
   bw->add_option("--wait", o.wait_s, "seconds to listen to discovery first")
@@ -84,6 +90,7 @@ int main(int argc, char** argv) {
     if (*goal) return stickrep::console::SendGoal(o, goal_id, target, std::cout);
     if (*info) return stickrep::console::InfoTopic(o, topic, verbose, std::cout);
     if (*status) return stickrep::console::ShowStatus(o, std::cout);
+    if (*doctor) return stickrep::console::Doctor(o, std::cout);
     if (*hz) return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kRate, std::cout);
     if (*delay) {
       return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kDelay, std::cout);

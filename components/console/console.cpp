@@ -13,6 +13,7 @@
 
 #include "common/input_error.h"
 #include "console/message_json.h"
+#include "console/doctor.h"
 #include "console/message_types.h"
 #include "console/topic_stats.h"
 #include "missionPubSubTypes.h"
@@ -457,6 +458,44 @@ int ShowStatus(const ConsoleOptions& o, std::ostream& out) {
     out << std::flush;
   } while (o.count != 1 && runtime::KeepRunning().load() && Clock::now() < until);
   return 0;
+}
+
+int Doctor(const ConsoleOptions& o, std::ostream& out) {
+  Session s = Join(o);
+  runtime::Executor ex;
+  ex.Spin(runtime::KeepRunning(),
+          runtime::Executor::Clock::now() +
+              std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                  std::chrono::duration<double>(o.wait_s)));
+  const auto endpoints = s.listener->Endpoints();
+  const auto findings = Diagnose(endpoints);
+  bool broken = false;
+  for (const Finding& f : findings) {
+    broken |= f.problem == "incompatible QoS" || f.problem == "type mismatch";
+  }
+  if (o.json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Finding& f : findings) {
+      list.push_back({{"topic", f.topic}, {"problem", f.problem}, {"policy", f.policy},
+                      {"writer", f.writer}, {"reader", f.reader}, {"detail", f.detail}});
+    }
+    out << nlohmann::json{{"endpoints", endpoints.size()}, {"findings", list}}.dump(2) << '\n';
+    return broken ? 1 : 0;
+  }
+  fmt::print(out, "{} endpoints on domain {}; {} findings\n", endpoints.size(),
+             s.system.domain_id, findings.size());
+  for (const Finding& f : findings) {
+    fmt::print(out, "{:<17} {:<26} {}{}{}{}\n", f.problem, f.topic,
+               f.policy.empty() ? "" : "policy " + f.policy + "; ",
+               f.writer.empty() ? "" : "writer " + f.writer,
+               !f.writer.empty() && !f.reader.empty() ? "; " : "",
+               f.reader.empty() ? "" : "reader " + f.reader);
+  }
+  if (endpoints.empty()) {
+    fmt::print(stderr, "no endpoint on domain {} within {:g} s\n", s.system.domain_id, o.wait_s);
+    return 1;
+  }
+  return broken ? 1 : 0;
 }
 
 int SendGoal(const ConsoleOptions& o, const std::string& goal_id, const std::string& target,

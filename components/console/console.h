@@ -68,6 +68,11 @@ int InfoTopic(const ConsoleOptions& options, const std::string& topic, bool verb
 // duration_s; once with count 1. 1 when no heartbeat comes within timeout_s.
 int ShowStatus(const ConsoleOptions& options, std::ostream& out);
 
+// `doctor`: requested/offered QoS that do not match, type names that differ, readers without
+// writers and writers without readers (console/doctor.h), each naming the topic, both
+// endpoints and the policy. 1 when some pair cannot match or nothing is on the domain.
+int Doctor(const ConsoleOptions& options, std::ostream& out);
+
 // `bw`: every topic that has a writer, subscribed for timeout_s (default 10 s) after
 // listening to discovery for wait_s: samples, rate, mean serialized size and bytes/s.
 int MeasureBandwidth(const ConsoleOptions& options, std::ostream& out);

@@ -12,7 +12,10 @@
 
 #include "common/input_error.h"
 #include "console/message_json.h"
+#include "console/doctor.h"
+#include "console/message_types.h"
 #include "console/topic_stats.h"
+#include "runtime/raw_endpoint.h"
 #include "runtime/endpoint.h"
 #include "runtime/process.h"
 #include "runtime/status_reporter.h"
@@ -26,11 +29,11 @@ using ::testing::HasSubstr;
 TEST(ConsoleTest, SummaryCountsWritersAndReadersAndTakesHistoryFromUserData) {
   std::vector<runtime::DiscoveredEndpoint> eps;
   eps.push_back({"robot/sonar", "stickrep::msgs::SonarScan", true, "best_effort", "volatile", 0, 0,
-                 "stickrep;profile=sensor;history=keep_last 5;publish_mode=synchronous"});
+                 "stickrep;profile=sensor;history=keep_last 5;publish_mode=synchronous", "", ""});
   eps.push_back({"robot/sonar", "stickrep::msgs::SonarScan", false, "best_effort", "volatile", 0,
-                 0, "stickrep;profile=sensor;history=keep_last 5"});
+                 0, "stickrep;profile=sensor;history=keep_last 5", "", ""});
   eps.push_back({"robot/sonar", "stickrep::msgs::SonarScan", false, "best_effort", "volatile", 0,
-                 0, ""});
+                 0, "", "", ""});
   const auto topics = runtime::Summarise(eps);
   ASSERT_EQ(topics.size(), 1u);
   EXPECT_EQ(topics[0].writers, 1);
@@ -214,6 +217,47 @@ TEST_F(ConsoleLiveTest, InfoNamesEachEndpointsProcessHostAndQos) {
   EXPECT_THAT(status.str(), HasSubstr("robot-a"));
   EXPECT_THAT(status.str(), HasSubstr("ACTIVE"));
   EXPECT_THAT(status.str(), HasSubstr("last warning: test"));
+}
+
+TEST_F(ConsoleLiveTest, DoctorNamesAReliableReaderOnABestEffortTopic) {
+  // A reliable reader of robot/odometry, which is written best effort: they never match.
+  runtime::Participant wrong(
+      runtime::ParticipantConfig{runtime::TestDomainId(), "stickrep-wrong-reader", "", "", {}},
+      runtime::QosCatalog::LoadFile(runtime::DefaultConfigDir() + "/qos.yaml"));
+  runtime::Executor ex;
+  runtime::QosProfile reliable;
+  reliable.name = "wrong";
+  reliable.reliability = runtime::QosProfile::Reliability::kReliable;
+  runtime::RawReader reader(wrong, ex, "robot/odometry",
+                            FindMessageType("stickrep::msgs::Odometry")->make_support, reliable,
+                            [](const runtime::RawSample&, const runtime::RawSampleInfo&) {});
+  options_.wait_s = 1.5;
+  std::ostringstream out;
+  EXPECT_EQ(Doctor(options_, out), 1);
+  EXPECT_THAT(out.str(), HasSubstr("incompatible QoS"));
+  EXPECT_THAT(out.str(), HasSubstr("robot/odometry"));
+  EXPECT_THAT(out.str(), HasSubstr("policy reliability"));
+  EXPECT_THAT(out.str(), HasSubstr("writer publisher offers best_effort"));
+  EXPECT_THAT(out.str(), HasSubstr("reader stickrep-wrong-reader requests reliable"));
+}
+
+TEST(DoctorTest, EveryRuleNamesThePolicy) {
+  runtime::DiscoveredEndpoint w{"a", "T", true, "best_effort", "volatile", 1.0, 2.0, "", "w1", "writer"};
+  runtime::DiscoveredEndpoint r{"a", "T", false, "reliable", "transient_local", 0.5, 1.0, "", "r1",
+                                "reader"};
+  const auto f = Diagnose({w, r});
+  std::vector<std::string> policies;
+  for (const auto& x : f) policies.push_back(x.policy);
+  EXPECT_THAT(policies, ::testing::UnorderedElementsAre("reliability", "durability", "deadline",
+                                                        "liveliness lease"));
+  runtime::DiscoveredEndpoint other = r;
+  other.type = "U";
+  EXPECT_EQ(Diagnose({w, other}).at(0).problem, "type mismatch");
+  EXPECT_EQ(Diagnose({w}).at(0).problem, "no reader");
+  EXPECT_EQ(Diagnose({r}).at(0).problem, "no writer");
+  runtime::DiscoveredEndpoint fine = w;
+  fine.is_writer = false;
+  EXPECT_TRUE(Diagnose({w, fine}).empty());
 }
 
 TEST_F(ConsoleLiveTest, NoWriterWithinTheTimeoutIsExit1) {
