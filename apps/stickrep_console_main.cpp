@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   std::string target, goal_id = "console";
   goal->add_option("target", target, "RING/EDGE, RING/node/N or pattern:NAME")->required();
   goal->add_option("--id", goal_id, "goal id (default 'console')");
+  goal->add_flag("--json", o.json, "the executive's answer as JSON");
   goal->add_option("--timeout", o.timeout_s, "give up after this many seconds (default 10)")
       ->check(CLI::NonNegativeNumber);
   try {

@@ -502,34 +502,41 @@ int SendGoal(const ConsoleOptions& o, const std::string& goal_id, const std::str
              std::ostream& out) {
   Session s = Join(o);
   runtime::Executor ex;
-  std::optional<msgs::MissionStatus> reply;
-  const std::string named = "goal '" + goal_id + "'";
-  runtime::Reader<msgs::MissionStatusPubSubType> status(
-      *s.participant, ex, "mission/status", [&](const msgs::MissionStatus& m) {
-        if (m.message().rfind(named, 0) == 0) reply = m;
+  std::optional<msgs::MissionGoalResult> result;
+  runtime::Reader<msgs::MissionGoalResultPubSubType> results(
+      *s.participant, ex, "mission/goal_result", [&](const msgs::MissionGoalResult& r) {
+        if (r.goal_id() == goal_id && r.target() == target) result = r;
       });
   runtime::Writer<msgs::MissionGoalPubSubType> goals(*s.participant, "mission/goal");
   msgs::MissionGoal g;
   g.goal_id(goal_id);
   g.target(target);
-  const auto until = runtime::Executor::Clock::now() +
-                     std::chrono::duration_cast<runtime::Executor::Clock::duration>(
-                         std::chrono::duration<double>(o.timeout_s > 0.0 ? o.timeout_s : 10.0));
-  // Re-sent every half second until answered: the executive may not be discovered yet.
-  auto next_send = runtime::Executor::Clock::now();
-  while (!reply && runtime::KeepRunning().load() && runtime::Executor::Clock::now() < until) {
-    if (runtime::Executor::Clock::now() >= next_send && goals.counters().matched.load() > 0) {
+  using Clock = runtime::Executor::Clock;
+  const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(
+                                            o.timeout_s > 0.0 ? o.timeout_s : 10.0));
+  // Sent once both sides have matched (the goal and its result are reliable); again after
+  // 2 s without an answer, in case the executive's reader was still being matched.
+  auto next_send = Clock::now();
+  while (!result && runtime::KeepRunning().load() && Clock::now() < until) {
+    if (Clock::now() >= next_send && goals.counters().matched.load() > 0 &&
+        results.counters().matched.load() > 0) {
       goals.Publish(g, runtime::WallClockNowNs());
-      next_send = runtime::Executor::Clock::now() + std::chrono::milliseconds(500);
+      next_send = Clock::now() + std::chrono::seconds(2);
     }
     ex.SpinOnce(std::chrono::milliseconds(50));
   }
-  if (!reply) {
-    fmt::print(out, "{}: no answer from an executive\n", named);
+  if (!result) {
+    fmt::print(out, "goal '{}': no answer from an executive\n", goal_id);
     return 1;
   }
-  fmt::print(out, "{}\n", ToJson(*reply).dump());
-  return reply->message().find("refused") == std::string::npos ? 0 : 1;
+  if (o.json) {
+    out << ToJson(*result).dump() << '\n';
+  } else {
+    fmt::print(out, "goal '{}' ({}): {}: {}\n", result->goal_id(), result->target(),
+               result->accepted() ? "accepted" : "refused", result->reason());
+  }
+  return result->accepted() ? 0 : 1;
 }
 
 }  // namespace stickrep::console

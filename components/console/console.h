@@ -78,8 +78,9 @@ int Doctor(const ConsoleOptions& options, std::ostream& out);
 int MeasureBandwidth(const ConsoleOptions& options, std::ostream& out);
 
 // `goal TARGET`: sends a goal (a door or node of the map, executive/route.h) on
-// mission/goal and waits up to timeout_s (default 10 s) for the executive to name it on
-// mission/status; prints that status. 0 when the goal was taken, 1 when refused or unanswered.
+// mission/goal and waits up to timeout_s (default 10 s) for the executive's answer on
+// mission/goal_result (goal id, accepted or refused, the reason); prints it (JSON with
+// json). 0 when the goal was accepted, 1 when refused or unanswered.
 int SendGoal(const ConsoleOptions& options, const std::string& goal_id, const std::string& target,
              std::ostream& out);
 

@@ -214,6 +214,11 @@ json ToJson(const msgs::MissionStatus& m) {
           {"message", m.message()}};
 }
 
+json ToJson(const msgs::MissionGoalResult& m) {
+  return {{"header", Header(m.header())}, {"goal_id", m.goal_id()}, {"target", m.target()},
+          {"accepted", m.accepted()}, {"reason", m.reason()}};
+}
+
 json ToJson(const msgs::ComponentStatus& m) {
   return {{"header", Header(m.header())},         {"component_name", m.component_name()},
           {"state", Name(m.state())},            {"samples_in", m.samples_in()},

@@ -27,6 +27,7 @@ nlohmann::json ToJson(const msgs::PoseHypotheses& m);
 nlohmann::json ToJson(const msgs::StickRepMap& m);
 nlohmann::json ToJson(const msgs::MissionGoal& m);
 nlohmann::json ToJson(const msgs::MissionStatus& m);
+nlohmann::json ToJson(const msgs::MissionGoalResult& m);
 nlohmann::json ToJson(const msgs::ComponentStatus& m);
 nlohmann::json ToJson(const msgs::GroundTruth& m);
 

@@ -58,6 +58,8 @@ const std::map<std::string, MessageType>& MessageTypes() {
              Entry<msgs::PoseHypothesesPubSubType>("stickrep::msgs::PoseHypotheses", {"localization/hypotheses"}),
              Entry<msgs::StickRepMapPubSubType>("stickrep::msgs::StickRepMap", {"map/stickrep"}),
              Entry<msgs::MissionGoalPubSubType>("stickrep::msgs::MissionGoal", {"mission/goal"}),
+             Entry<msgs::MissionGoalResultPubSubType>("stickrep::msgs::MissionGoalResult",
+                                                      {"mission/goal_result"}),
              Entry<msgs::MissionStatusPubSubType>("stickrep::msgs::MissionStatus", {"mission/status"}),
              Entry<msgs::ComponentStatusPubSubType>("stickrep::msgs::ComponentStatus", {"system/status"}),
              Entry<msgs::GroundTruthPubSubType>("stickrep::msgs::GroundTruth", {"sim/ground_truth"}),

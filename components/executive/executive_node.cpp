@@ -63,6 +63,8 @@ class ExecutiveNode : public runtime::ProcessNode {
 
     commands_ = std::make_unique<runtime::Writer<msgs::MotionCommandPubSubType>>(
         ctx.participant, "robot/motion/command");
+    results_ = std::make_unique<runtime::Writer<msgs::MissionGoalResultPubSubType>>(
+        ctx.participant, "mission/goal_result");
     status_ = std::make_unique<runtime::Writer<msgs::MissionStatusPubSubType>>(ctx.participant,
                                                                               "mission/status");
     heartbeats_ = std::make_unique<runtime::Reader<msgs::ComponentStatusPubSubType>>(
@@ -158,12 +160,20 @@ class ExecutiveNode : public runtime::ProcessNode {
 
   void OnGoal(const msgs::MissionGoal& g) {
     ctx_->counters.CountIn();
+    msgs::MissionGoalResult result;
+    result.goal_id(g.goal_id());
+    result.target(g.target());
     if (const auto why = executive_->OnGoal(g.goal_id(), g.target())) {
       ctx_->log->warn("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), *why);
       PublishStatus(fmt::format("goal '{}' ({}) refused: {}", g.goal_id(), g.target(), *why),
                     g.goal_id());
-      return;
+      result.accepted(false);
+      result.reason(*why);
+    } else {
+      result.accepted(true);
+      result.reason(mission_->last_message());
     }
+    if (results_->Publish(result, ctx_->now_ns())) ctx_->counters.CountOut();
     Report();
   }
 
@@ -222,6 +232,7 @@ class ExecutiveNode : public runtime::ProcessNode {
   bool exit_when_localized_ = false;
   std::unique_ptr<runtime::Writer<msgs::MotionCommandPubSubType>> commands_;
   std::unique_ptr<runtime::Writer<msgs::MissionStatusPubSubType>> status_;
+  std::unique_ptr<runtime::Writer<msgs::MissionGoalResultPubSubType>> results_;
   std::unique_ptr<runtime::Reader<msgs::ComponentStatusPubSubType>> heartbeats_;
   std::unique_ptr<runtime::Reader<msgs::LocalizationPosePubSubType>> poses_;
   std::unique_ptr<runtime::Reader<msgs::MissionGoalPubSubType>> goals_;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 
 #include "basePubSubTypes.h"
@@ -33,6 +34,10 @@ TEST_F(BadInputTest, GoalsTheExecutiveCannotTakeAreRefusedWithTheReason) {
   runtime::Reader<msgs::MotionCommandPubSubType> commands(
       participant(), executor(), "robot/motion/command",
       [&](const msgs::MotionCommand& m) { last_command = m; });
+  std::map<std::string, msgs::MissionGoalResult> results;  // by goal id
+  runtime::Reader<msgs::MissionGoalResultPubSubType> result_reader(
+      participant(), executor(), "mission/goal_result",
+      [&](const msgs::MissionGoalResult& r) { results[r.goal_id()] = r; });
   runtime::Writer<msgs::MissionGoalPubSubType> goals(participant(), "mission/goal");
   runtime::Writer<msgs::LocalizationPosePubSubType> poses(participant(), "localization/pose");
   // The executive alone, needing no other process: it starts aligning once it is active.
@@ -77,6 +82,11 @@ TEST_F(BadInputTest, GoalsTheExecutiveCannotTakeAreRefusedWithTheReason) {
   ASSERT_TRUE(reply.has_value()) << Outputs();
   EXPECT_THAT(reply->message(), HasSubstr("refused: the pose is not known yet"));
   EXPECT_EQ(reply->state(), msgs::MISSION_ALIGNING);
+  // The structured answer: the goal's id, refused, and why.
+  ASSERT_TRUE(SpinUntil([&] { return results.count("early") > 0; }, 5.0));
+  EXPECT_FALSE(results["early"].accepted());
+  EXPECT_EQ(results["early"].target(), "wing1_corridor/10");
+  EXPECT_THAT(results["early"].reason(), HasSubstr("the pose is not known yet"));
 
   // Localized (as the localizer would say): goals now name places, or are refused.
   msgs::LocalizationPose pose;
@@ -106,6 +116,14 @@ TEST_F(BadInputTest, GoalsTheExecutiveCannotTakeAreRefusedWithTheReason) {
   reply = send("garbled", "wing1_corridor//x");
   ASSERT_TRUE(reply.has_value());
   EXPECT_THAT(reply->message(), HasSubstr("refused"));
+  // The console's goal verb reads the structured answer: refused, exit 1, with the reason.
+  launch::ChildProcess& console = Start(
+      "stickrep-console", {"goal", "library/3", "--id", "from-console", "--timeout", "15"});
+  ASSERT_TRUE(SpinUntil([&] { return console.Exited(); }, 30.0)) << Outputs();
+  console.ReadLines(true);
+  EXPECT_EQ(console.exit_code(), 1) << console.output();
+  EXPECT_THAT(console.output(), HasSubstr("goal 'from-console' (library/3): refused: "));
+  EXPECT_THAT(console.output(), HasSubstr("has no ring 'library'"));
   // The robot keeps its safe state: still holding, still commanded to stop.
   EXPECT_EQ(statuses.back().state(), msgs::MISSION_LOCALIZED);
   SpinUntil([] { return false; }, 0.3);
@@ -115,6 +133,8 @@ TEST_F(BadInputTest, GoalsTheExecutiveCannotTakeAreRefusedWithTheReason) {
   reply = send("door", "wing1_corridor/15");
   ASSERT_TRUE(reply.has_value());
   EXPECT_EQ(reply->state(), msgs::MISSION_EXECUTING_GOAL) << reply->message();
+  ASSERT_TRUE(SpinUntil([&] { return results.count("door") > 0; }, 5.0));
+  EXPECT_TRUE(results["door"].accepted()) << results["door"].reason();
   ASSERT_TRUE(SpinUntil(
       [&] { return last_command && last_command->mode() == msgs::MOTION_FOLLOW_HALLWAY; }, 5.0));
   EXPECT_GT(std::abs(last_command->linear_speed_ftps()), 0.0);
