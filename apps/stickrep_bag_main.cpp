@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "recording/bag_inspect.h"
 
 int main(int argc, char** argv) {
@@ -25,7 +26,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
   }
-  try {
+  return stickrep::RunTool("stickrep-bag", [&] {
     using namespace stickrep::recording;
     if (*info) {
       const BagInfo i = InspectBag(file);
@@ -34,11 +35,5 @@ int main(int argc, char** argv) {
     }
     if (*exporter) return ExportTopic(file, topic, std::cout, std::cerr) == 0 ? 0 : stickrep::kExitBadInput;
     return CheckBag(file, std::cout) == 0 ? 0 : stickrep::kExitBadInput;
-  } catch (const stickrep::InputError& e) {
-    fmt::print(stderr, "stickrep-bag: {}\n", e.what());
-    return stickrep::kExitBadInput;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "stickrep-bag: {}\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "console/console.h"
 #include "runtime/process.h"
 #include "runtime/system_config.h"
@@ -85,7 +86,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
   }
   stickrep::runtime::InstallSignalHandlers();
-  try {
+  return stickrep::RunTool("stickrep-console", [&] {
     if (*list) return stickrep::console::ListTopics(o, std::cout);
     if (*bw) return stickrep::console::MeasureBandwidth(o, std::cout);
     if (*goal) return stickrep::console::SendGoal(o, goal_id, target, std::cout);
@@ -97,11 +98,5 @@ int main(int argc, char** argv) {
       return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kDelay, std::cout);
     }
     return stickrep::console::EchoTopic(o, topic, std::cout);
-  } catch (const stickrep::InputError& e) {
-    fmt::print(stderr, "stickrep-console: {}\n", e.what());
-    return stickrep::kExitBadInput;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "stickrep-console: {}\n", e.what());
-    return 1;
-  }
+  });
 }

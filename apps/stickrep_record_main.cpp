@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "recording/recorder.h"
 #include "runtime/process.h"
 #include "runtime/system_config.h"
@@ -32,15 +33,9 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
   }
   stickrep::runtime::InstallSignalHandlers();
-  try {
+  return stickrep::RunTool("stickrep-record", [&] {
     const auto report = stickrep::recording::Record(o, std::cerr);
     stickrep::recording::PrintRecordReport(report, std::cout);
     return report.failure.empty() ? 0 : stickrep::kExitBadInput;
-  } catch (const stickrep::InputError& e) {
-    fmt::print(stderr, "stickrep-record: {}\n", e.what());
-    return stickrep::kExitBadInput;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "stickrep-record: {}\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "console/console.h"
 #include "recording/replay_session.h"
 #include "runtime/process.h"
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
   }
   stickrep::runtime::InstallSignalHandlers();
-  try {
+  return stickrep::RunTool("stickrep-replay", [&] {
     o.remap = stickrep::recording::ParseRemaps(remaps);
     stickrep::recording::ValidateReplayOptions(o);
     auto session = stickrep::console::JoinDomain(system_file, domain_id, deployment,
@@ -54,11 +55,5 @@ int main(int argc, char** argv) {
     replay.replayer().Stop();
     std::cout << replay.Summary() << '\n';
     return 0;
-  } catch (const stickrep::InputError& e) {
-    fmt::print(stderr, "stickrep-replay: {}\n", e.what());
-    return stickrep::kExitBadInput;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "stickrep-replay: {}\n", e.what());
-    return 1;
-  }
+  });
 }

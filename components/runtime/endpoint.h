@@ -29,6 +29,23 @@ struct EndpointCounters {
 // that must wait for discovery or data without a fixed sleep as the pass condition.
 bool WaitFor(const std::function<bool()>& done, double timeout_s);
 
+// Counts a writer's matched readers and missed deadlines (typed and raw writers alike).
+class WriterCountingListener : public eprosima::fastdds::dds::DataWriterListener {
+ public:
+  explicit WriterCountingListener(EndpointCounters& c) : c_(c) {}
+  void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
+                              const eprosima::fastdds::dds::PublicationMatchedStatus& s) override {
+    c_.matched = s.current_count;
+  }
+  void on_offered_deadline_missed(eprosima::fastdds::dds::DataWriter*,
+                                  const eprosima::fastdds::dds::OfferedDeadlineMissedStatus&) override {
+    c_.deadline_missed++;
+  }
+
+ private:
+  EndpointCounters& c_;
+};
+
 // A typed writer on one topic with the topic's catalogued QoS. `PubSubType` is the
 // fastddsgen support class; every StickRep sample has a `header` that Publish() stamps.
 template <typename PubSubType>
@@ -59,26 +76,10 @@ class Writer {
   }
 
  private:
-  class Listener : public eprosima::fastdds::dds::DataWriterListener {
-   public:
-    explicit Listener(EndpointCounters& c) : c_(c) {}
-    void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
-                                const eprosima::fastdds::dds::PublicationMatchedStatus& s) override {
-      c_.matched = s.current_count;
-    }
-    void on_offered_deadline_missed(eprosima::fastdds::dds::DataWriter*,
-                                    const eprosima::fastdds::dds::OfferedDeadlineMissedStatus&) override {
-      c_.deadline_missed++;
-    }
-
-   private:
-    EndpointCounters& c_;
-  };
-
   Participant& participant_;
   std::string topic_;
   EndpointCounters counters_;
-  Listener listener_;
+  WriterCountingListener listener_;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
   uint32_t sequence_ = 0;
 };

@@ -95,7 +95,10 @@ TEST_F(EndpointTest, DeadlineMissIsReportedWhenCommandsStop) {
                                               [](const msgs::MotionCommand&) {});
   reader.OnDeadlineMissed([&] { misses++; });
   Writer<msgs::MotionCommandPubSubType> writer(a_, "robot/motion/command");
+  // Both sides matched: a writer that has not matched the reader yet sends it nothing, and a
+  // reader's deadline starts with its first sample.
   ASSERT_TRUE(reader.WaitForMatched(1, 10.0));
+  ASSERT_TRUE(writer.WaitForMatched(1, 10.0));
   msgs::MotionCommand m;
   writer.Publish(m, 1);
   // The catalogue's deadline is 0.5 s: with no further command a miss must be reported.

@@ -40,22 +40,10 @@ class RawWriter {
   const EndpointCounters& counters() const { return counters_; }
 
  private:
-  class Listener : public eprosima::fastdds::dds::DataWriterListener {
-   public:
-    explicit Listener(EndpointCounters& c) : c_(c) {}
-    void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
-                                const eprosima::fastdds::dds::PublicationMatchedStatus& s) override {
-      c_.matched = s.current_count;
-    }
-
-   private:
-    EndpointCounters& c_;
-  };
-
   Participant& participant_;
   std::string topic_;
   EndpointCounters counters_;
-  Listener listener_;
+  WriterCountingListener listener_;
   RawSample sample_;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
 };
