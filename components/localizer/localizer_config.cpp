@@ -28,6 +28,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   config.assembler.min_wall_in = c.Get<double>("min_wall_in", 0.0, 60.0, "in");
   config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
   s.view.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
+  s.view.max_bend_deg = c.Get<double>("max_bend_deg", 0.0, 60.0, "deg");
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
   s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);

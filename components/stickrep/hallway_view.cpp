@@ -11,6 +11,12 @@ namespace {
 
 bool IsCorner(double angle_deg) { return std::abs(angle_deg - 180.0) > 1.0; }
 
+// Walls and openings are both passed along the wall (an opening shows no door).
+bool WallLike(const Edge& e) { return e.IsWall() || e.IsOpening(); }
+
+// The edge as the follower senses it: an opening is wall length.
+Edge Sensed(const Edge& e) { return e.IsOpening() ? Edge::Wall(e.metric_in) : e; }
+
 }  // namespace
 
 bool HallwayView::IsStep(int r, int e) const {
@@ -40,12 +46,18 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
     // Whether kept edge e continues the view edge of the kept edge before it: only steps
     // lie between them and both are walls.
     const auto prev = [&](int e) { return ring.closed ? (e - 1 + n) % n : e - 1; };
+    // A bend the follower follows without turning: between two wall-like edges.
+    const auto bend = [&](int e) {
+      const Node& node = ring.nodes[e];
+      return !node.artificial && std::abs(node.angle_deg - 180.0) <= config_.max_bend_deg;
+    };
     const auto merges = [&](int e) {
       if (step[e]) return false;
       int p = prev(e);
-      if (p < 0 || !step[p]) return false;
+      if (p < 0) return false;
+      if (!step[p]) return bend(e) && WallLike(ring.edges[p]) && WallLike(ring.edges[e]);
       while (p >= 0 && step[p] && p != e) p = ring.closed || p > 0 ? prev(p) : -1;
-      return p >= 0 && p != e && ring.edges[p].IsWall() && ring.edges[e].IsWall();
+      return p >= 0 && p != e && WallLike(ring.edges[p]) && WallLike(ring.edges[e]);
     };
     // Start at a kept edge that begins a view edge.
     int start = -1;
@@ -85,9 +97,12 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
       Node node = ring.nodes[e];
       const int before = prev(e);
       if (before >= 0 && step[before]) node.angle_deg = 180.0;  // the step's corner is gone
+      if (std::abs(node.angle_deg - 180.0) > config_.max_bend_deg) {
+        node.angle_deg = node.angle_deg < 180.0 ? 90.0 : 270.0;  // the turn the follower makes
+      }
       node_of[r][e] = static_cast<int>(out.nodes.size());
       out.nodes.push_back(node);
-      out.edges.push_back(ring.edges[e]);
+      out.edges.push_back(Sensed(ring.edges[e]));
       members.push_back({e});
       view_of[e] = static_cast<int>(members.size()) - 1;
     }

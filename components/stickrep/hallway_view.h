@@ -6,7 +6,10 @@
 // passed straight, and odometry sees one wall where the map has three or more edges. The
 // view removes those steps: the step's edge and its two corners go, the coplanar walls
 // either side merge into one (lengths along the hallway add), and the localizer matches
-// sensed edges against the view. Positions in the view map back to the map's own edges.
+// sensed edges against the view. Likewise walls joined at shallow bends (curved walls as
+// chords) merge, openings (map format 2) are passed as wall, and corners of any other angle
+// become the 90° or 270° turn the follower makes there. Positions in the view map back to
+// the map's own edges.
 
 #include <vector>
 
@@ -18,6 +21,12 @@ struct HallwayViewConfig {
   // A wall edge between two opposite corners (90 then 270, or 270 then 90) shorter than
   // this is a step the follower passes straight. 0 keeps every corner.
   double max_step_in = 36.0;
+  // A node between two walls (or openings) whose angle lies within this of 180° is a bend
+  // the follower follows without turning: a coplanar joint, a curved wall written as chords,
+  // a shallow corner. The walls either side are sensed as one, lengths along the wall add.
+  // A node bent further is a corner the follower turns at in place, left or right: it is
+  // sensed as 90° (convex) or 270° (concave) whatever its angle, and the view says so.
+  double max_bend_deg = 30.0;
 };
 
 class HallwayView {

@@ -130,5 +130,58 @@ TEST(HallwayViewTest, EngineeringBuildingPilastersCollapse) {
   }
 }
 
+// Map format 2 on an open side: a wall curved through 30 deg as three chords (bends of
+// 10 deg), an opening, a 120 deg corner (turned like any convex corner) and a 150 deg one
+// (followed: 30 deg).
+const char* kBends = R"(stickrep_map: 2
+name: bends
+rings:
+  - id: side
+    closed: false
+    path:
+      - node: {angle_deg: 180, xyz_in: [0, 0, 0]}
+      - edge: {type: hallway, metric_in: 100}
+      - node: {angle_deg: 170, xyz_in: [100, 0, 0]}
+      - edge: {type: hallway, metric_in: 50}
+      - node: {angle_deg: 170, xyz_in: [149.240, -8.682, 0]}
+      - edge: {type: hallway, metric_in: 50}
+      - node: {angle_deg: 170, xyz_in: [196.225, -25.783, 0]}
+      - edge: {type: hallway, metric_in: 50}
+      - node: {angle_deg: 180, xyz_in: [239.526, -50.783, 0]}
+      - edge: {type: opening, metric_in: 80}
+      - node: {angle_deg: 180, xyz_in: [308.808, -90.783, 0]}
+      - edge: {type: hallway, metric_in: 40}
+      - node: {angle_deg: 180, xyz_in: [343.449, -110.783, 0]}
+      - edge: {type: doorway, width_in: 36}
+      - node: {angle_deg: 120, xyz_in: [374.626, -128.783, 0]}
+      - edge: {type: hallway, metric_in: 60}
+      - node: {angle_deg: 150, xyz_in: [374.626, -188.783, 0]}
+      - edge: {type: hallway, metric_in: 60}
+      - node: {angle_deg: 180, xyz_in: [344.626, -240.745, 0]}
+)";
+
+TEST(HallwayViewTest, ShallowBendsAndOpeningsAreOneWallAndCornersAreTurns) {
+  const Map map = ParseMap(kBends, "bends.yaml");
+  const HallwayView view(map);
+  const Ring& r = view.view().ring(0);
+  // wall 100+50+50+50+80+40 | door 36 | wall 60+60
+  ASSERT_EQ(r.EdgeCount(), 3);
+  EXPECT_TRUE(r.edges[0].IsWall());
+  EXPECT_DOUBLE_EQ(r.edges[0].metric_in, 370.0);
+  EXPECT_TRUE(r.edges[1].IsDoor());
+  EXPECT_DOUBLE_EQ(r.edges[2].metric_in, 120.0);
+  EXPECT_DOUBLE_EQ(r.nodes[2].angle_deg, 90.0);  // 120 deg: the follower turns toward the wall
+  EXPECT_EQ(view.OriginalEdges(0, 0), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(view.OriginalEdges(0, 2), (std::vector<int>{7, 8}));
+  // Places map back through the merged chords and the opening.
+  const HallwayView::Place p = view.ToOriginal(0, 0, +1, 260.0);
+  EXPECT_EQ(p.edge, 4);
+  EXPECT_DOUBLE_EQ(p.offset_in, 10.0);
+  // With bends kept, every chord is its own wall and the 150 deg corner a turn.
+  const HallwayView sharp(map, HallwayViewConfig{36.0, 5.0});
+  EXPECT_EQ(sharp.view().ring(0).EdgeCount(), 7);
+  EXPECT_DOUBLE_EQ(sharp.view().ring(0).nodes[6].angle_deg, 90.0);
+}
+
 }  // namespace
 }  // namespace stickrep::map

@@ -9,8 +9,8 @@ namespace stickrep::map {
 
 namespace {
 
-constexpr const char* kEdgeTypeNames[] = {"corner",  "doorway", "elevator",
-                                          "hallway", "pattern", "stairwell"};
+constexpr const char* kEdgeTypeNames[] = {"corner",  "doorway", "elevator", "hallway",
+                                          "pattern", "stairwell", "opening"};
 constexpr const char* kPrototypeNames[] = {"doorjam", "wallsegment", "pattern"};
 constexpr const char* kDoorClassNames[] = {"30", "32", "36", "40", "30/30", "36/36"};
 constexpr double kDoorClassWidthsIn[] = {30.0, 32.0, 36.0, 40.0, 60.0, 72.0};
@@ -65,6 +65,23 @@ double DoorClassWidthIn(DoorClass door_class) {
   return kDoorClassWidthsIn[static_cast<int>(door_class)];
 }
 
+std::optional<DoorClass> NearestDoorClass(double width_in) {
+  std::optional<DoorClass> best;
+  double best_gap = kDoorClassToleranceIn;
+  for (int i = 0; i < kDoorClassCount; ++i) {
+    const double gap = std::abs(width_in - kDoorClassWidthsIn[i]);
+    if (gap <= best_gap) {
+      best_gap = gap;
+      best = static_cast<DoorClass>(i);
+    }
+  }
+  return best;
+}
+
+const char* OutlineName(Outline outline) {
+  return outline == Outline::kCorridor ? "corridor" : "side";
+}
+
 bool IsDoubleDoor(DoorClass door_class) {
   return door_class == DoorClass::k30_30 || door_class == DoorClass::k36_36;
 }
@@ -116,10 +133,17 @@ Map::Map(MapInfo info, std::vector<Ring> rings, std::vector<Join> joins)
       if (e.IsDoor() != e.door_class.has_value()) {
         Invalid(where + ": doorway edges, and only they, carry a door class");
       }
-      if (e.IsDoor() && std::abs(e.metric_in - DoorClassWidthIn(*e.door_class)) > 0.5) {
+      if (e.IsDoor() &&
+          std::abs(e.metric_in - DoorClassWidthIn(*e.door_class)) > kDoorClassToleranceIn) {
         Invalid(where + ": a door of class " + DoorClassName(*e.door_class) + " has metric " +
                 std::to_string(e.metric_in) + " in");
       }
+    }
+    if (ring.width_in && !(*ring.width_in > 0.0 && std::isfinite(*ring.width_in))) {
+      Invalid(where + " has a hallway width that is not > 0");
+    }
+    if (ring.outline == Outline::kCorridor && !ring.closed) {
+      Invalid(where + ": a corridor outline is a closed ring");
     }
     for (const Node& n : ring.nodes) {
       if (!(n.angle_deg >= 0.0 && n.angle_deg <= 360.0)) {

@@ -15,8 +15,18 @@
 namespace stickrep::map {
 
 // Edge types of §6.1. `kHallway` is the wall segment type ("hallway" in the text).
-enum class EdgeType : std::uint8_t { kCorner, kDoorway, kElevator, kHallway, kPattern, kStairwell };
-inline constexpr int kEdgeTypeCount = 6;
+// `kOpening` (map format 2) is a gap in the wall the robot passes: a wide opening into a
+// hall, a passage into a side corridor; neither a door nor a wall.
+enum class EdgeType : std::uint8_t {
+  kCorner,
+  kDoorway,
+  kElevator,
+  kHallway,
+  kPattern,
+  kStairwell,
+  kOpening
+};
+inline constexpr int kEdgeTypeCount = 7;
 
 // Edge prototypes of §3.3 / §6.1.
 enum class Prototype : std::uint8_t { kDoorjam, kWallsegment, kPattern };
@@ -39,10 +49,18 @@ std::optional<DoorClass> ParseDoorClass(std::string_view name);
 // Nominal ribbon width in inches: 30, 32, 36, 40, 60, 72.
 double DoorClassWidthIn(DoorClass door_class);
 bool IsDoubleDoor(DoorClass door_class);
+// A measured door opening may differ from its class width by at most this much (map format
+// 2 keeps the measured width; real openings of 51-55 in are 60 in doubles, §4.1.2 lists the
+// classes only). Wider gaps are `opening` edges.
+inline constexpr double kDoorClassToleranceIn = 12.0;
+// The class whose width is nearest `width_in`, if it lies within kDoorClassToleranceIn.
+std::optional<DoorClass> NearestDoorClass(double width_in);
 // The class of one leaf of a door: 30/30 -> 30, 36/36 -> 36, singles -> themselves.
 DoorClass LeafClass(DoorClass door_class);
 
-// One attributed edge (§6.1). Doors carry their class and a metric equal to its width.
+// One attributed edge (§6.1). Doors carry their class and a metric: the class width (map
+// format 1) or the measured width of the opening (format 2), within kDoorClassToleranceIn
+// of the class width.
 struct Edge {
   EdgeType type = EdgeType::kHallway;
   double metric_in = 0.0;  // length (walls) or width (doors, elevators), > 0
@@ -52,6 +70,7 @@ struct Edge {
 
   bool IsDoor() const { return type == EdgeType::kDoorway; }
   bool IsWall() const { return type == EdgeType::kHallway; }
+  bool IsOpening() const { return type == EdgeType::kOpening; }
 
   static Edge Wall(double metric_in);
   static Edge Door(DoorClass door_class, std::string pattern = "");
@@ -70,12 +89,24 @@ struct Node {
   bool artificial = false;  // the node where this ring is joined to another ring (§3.3)
 };
 
+// What a ring outlines (map format 2). A `kSide` ring is one side of a hallway (the rings
+// of §3.3): the hallway's other side is another ring, or, for a ring simulated on its own,
+// a wall the simulation adds. A `kCorridor` ring is the closed outline of a corridor's free
+// space, both sides and its ends: nothing is added opposite it.
+enum class Outline : std::uint8_t { kSide, kCorridor };
+const char* OutlineName(Outline outline);
+
 // One ring: the edges along one side of a hallway in order, walking with the wall on the
 // right. Node i is the node at the start of edge i. A closed ring has as many nodes as
 // edges (node 0 closes the ring); an open ring has one node more (its two ends).
 struct Ring {
   std::string id;
   bool closed = true;
+  Outline outline = Outline::kSide;
+  // Width of the hallway along this ring (map format 2), when the map gives it: the
+  // distance to the opposite wall of a side ring, the corridor's usual width for a
+  // corridor outline (where the follower's axis runs).
+  std::optional<double> width_in;
   std::vector<Edge> edges;
   std::vector<Node> nodes;
 

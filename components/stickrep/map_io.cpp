@@ -70,16 +70,52 @@ Node ReadNode(const StrictYaml& y) {
   return n;
 }
 
-Edge ReadEdge(const StrictYaml& y) {
+// A version 2 doorway: its measured opening `width_in`, the class derived from it (or
+// given, and then within the tolerance of the width).
+void ReadMeasuredDoor(const StrictYaml& y, Edge& e) {
+  const double width = y.Get<double>("width_in", 1.0, 1000.0, "in");
+  if (y.Has("metric_in")) y.Fail("metric_in", "a doorway with width_in takes no metric_in");
+  std::optional<DoorClass> door_class;
+  if (y.Has("class")) {
+    const std::string cls = y.Get<std::string>("class");
+    door_class = ParseDoorClass(cls);
+    if (!door_class) {
+      y.Fail("class",
+             "door class '" + cls + "' is not a legal door width (" + DoorClassList() + " in)");
+    }
+    if (std::abs(DoorClassWidthIn(*door_class) - width) > kDoorClassToleranceIn) {
+      y.Fail("width_in", "a door of class " + cls + " cannot be " + FormatNumber(width) +
+                             " in wide (tolerance " + FormatNumber(kDoorClassToleranceIn) +
+                             " in)");
+    }
+  } else {
+    door_class = NearestDoorClass(width);
+    if (!door_class) {
+      y.Fail("width_in", "no door class lies within " + FormatNumber(kDoorClassToleranceIn) +
+                             " in of " + FormatNumber(width) + " in (" + DoorClassList() +
+                             "); a wider gap is an 'opening' edge");
+    }
+  }
+  e.door_class = door_class;
+  e.metric_in = width;
+}
+
+Edge ReadEdge(const StrictYaml& y, int version) {
   Edge e;
   const std::string type_name = y.Get<std::string>("type");
   const auto type = ParseEdgeType(type_name);
   if (!type) {
     y.Fail("type", "unknown edge type '" + type_name +
-                       "' (corner, doorway, elevator, hallway, pattern, stairwell)");
+                       "' (corner, doorway, elevator, hallway, opening, pattern, stairwell)");
   }
   e.type = *type;
-  if (e.IsDoor()) {
+  if (e.IsOpening() && version < 2) {
+    y.Fail("type", "'opening' edges need map format 2 (stickrep_map: 2)");
+  }
+  if (e.IsDoor() && y.Has("width_in")) {
+    if (version < 2) y.Fail("width_in", "measured door widths need map format 2");
+    ReadMeasuredDoor(y, e);
+  } else if (e.IsDoor()) {
     const std::string cls = y.Get<std::string>("class");
     const auto door_class = ParseDoorClass(cls);
     if (!door_class) {
@@ -132,13 +168,26 @@ double Distance(const Node& a, const Node& b) {
                    (a.z_in - b.z_in) * (a.z_in - b.z_in));
 }
 
-Ring ReadRing(const StrictYaml& y, std::vector<int>* node_lines) {
+Ring ReadRing(const StrictYaml& y, int version, std::vector<int>* node_lines) {
   Ring ring;
   ring.id = y.Get<std::string>("id");
   if (!IsIdentifier(ring.id)) {
     y.Fail("id", "a ring id is one word of letters, digits, '_', '-' or '.' (at most 64)");
   }
   ring.closed = y.Get<bool>("closed");
+  for (const char* key : {"outline", "width_in"}) {
+    if (version < 2 && y.Has(key)) y.Fail(key, "needs map format 2 (stickrep_map: 2)");
+  }
+  if (y.Has("outline")) {
+    const std::string outline = y.Get<std::string>("outline");
+    if (outline == "corridor") {
+      ring.outline = Outline::kCorridor;
+      if (!ring.closed) y.Fail("outline", "a corridor outline is a closed ring");
+    } else if (outline != "side") {
+      y.Fail("outline", "unknown outline '" + outline + "' (side, corridor)");
+    }
+  }
+  if (y.Has("width_in")) ring.width_in = y.Get<double>("width_in", 24.0, 2400.0, "in");
   const StrictYaml path = y.Child("path");
   const std::vector<StrictYaml> items = path.Elements();
   std::vector<int> edge_lines;
@@ -163,7 +212,7 @@ Ring ReadRing(const StrictYaml& y, std::vector<int>* node_lines) {
       ring.nodes.push_back(ReadNode(body));
       node_lines->push_back(body.line());
     } else {
-      ring.edges.push_back(ReadEdge(body));
+      ring.edges.push_back(ReadEdge(body, version));
       edge_lines.push_back(body.line());
     }
     expect_node = !expect_node;
@@ -202,9 +251,10 @@ Ring ReadRing(const StrictYaml& y, std::vector<int>* node_lines) {
 Map ParseMap(const std::string& text, const std::string& name) {
   const StrictYaml root = StrictYaml::LoadString(text, name);
   const int version = root.Get<int>("stickrep_map");
-  if (version != kMapFormatVersion) {
+  if (version < 1 || version > kMapFormatVersion) {
     root.Fail("stickrep_map", "unsupported map format version " + std::to_string(version) +
-                                  " (this build reads " + std::to_string(kMapFormatVersion) + ")");
+                                  " (this build reads 1 to " +
+                                  std::to_string(kMapFormatVersion) + ")");
   }
   MapInfo info;
   info.name = root.Get<std::string>("name");
@@ -224,7 +274,7 @@ Map ParseMap(const std::string& text, const std::string& name) {
   std::vector<std::vector<int>> node_lines;
   for (const StrictYaml& ry : root.Sequence("rings")) {
     node_lines.emplace_back();
-    Ring ring = ReadRing(ry, &node_lines.back());
+    Ring ring = ReadRing(ry, version, &node_lines.back());
     if (!ring_index.emplace(ring.id, static_cast<int>(rings.size())).second) {
       ry.Fail("id", "ring id '" + ring.id + "' is used by an earlier ring");
     }
@@ -300,6 +350,19 @@ std::string Quote(const std::string& s) {
 
 }  // namespace
 
+bool NeedsFormat2(const Map& map) {
+  for (const Ring& ring : map.rings()) {
+    if (ring.outline != Outline::kSide || ring.width_in) return true;
+    for (const Edge& e : ring.edges) {
+      if (e.IsOpening()) return true;
+      if (e.IsDoor() && std::abs(e.metric_in - DoorClassWidthIn(*e.door_class)) > 1e-9) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 std::string WriteMapYaml(const Map& map) {
   const MapInfo& info = map.info();
   std::ostringstream out;
@@ -307,7 +370,7 @@ std::string WriteMapYaml(const Map& map) {
   if (!info.generator.empty()) {
     out << "# Generated; edit the generator, not this file, and regenerate with the seed below.\n";
   }
-  out << "stickrep_map: " << kMapFormatVersion << "\n";
+  out << "stickrep_map: " << (NeedsFormat2(map) ? 2 : 1) << "\n";
   out << "name: " << info.name << "\n";
   if (!info.description.empty()) out << "description: " << Quote(info.description) << "\n";
   if (!info.generator.empty()) {
@@ -318,6 +381,8 @@ std::string WriteMapYaml(const Map& map) {
   for (const Ring& ring : map.rings()) {
     out << "  - id: " << ring.id << "\n";
     out << "    closed: " << (ring.closed ? "true" : "false") << "\n";
+    if (ring.outline != Outline::kSide) out << "    outline: " << OutlineName(ring.outline) << "\n";
+    if (ring.width_in) out << "    width_in: " << FormatNumber(*ring.width_in) << "\n";
     out << "    path:\n";
     for (int i = 0; i < ring.NodeCount(); ++i) {
       const Node& n = ring.nodes[i];
@@ -335,6 +400,9 @@ std::string WriteMapYaml(const Map& map) {
       out << "      - edge: {type: " << EdgeTypeName(e.type);
       if (e.IsDoor()) {
         out << ", class: " << Quote(DoorClassName(*e.door_class));
+        if (std::abs(e.metric_in - DoorClassWidthIn(*e.door_class)) > 1e-9) {
+          out << ", width_in: " << FormatNumber(e.metric_in);
+        }
       } else {
         out << ", metric_in: " << FormatNumber(e.metric_in);
       }

@@ -10,8 +10,12 @@
 
 namespace stickrep::map {
 
-// The only format version this code reads and writes (`stickrep_map: 1`).
-inline constexpr int kMapFormatVersion = 1;
+// The newest format version (`stickrep_map: 2`). Version 1 files still load; the writer
+// writes version 1 when a map uses nothing of version 2 (measured door widths, openings,
+// corridor outlines, ring widths), so version 1 maps round-trip unchanged.
+inline constexpr int kMapFormatVersion = 2;
+// Whether a map needs format 2 to be written.
+bool NeedsFormat2(const Map& map);
 
 // How far an edge's metric may differ from the distance between its two nodes before the
 // file is rejected: max(kGeometryToleranceIn, kGeometryToleranceRel * metric).

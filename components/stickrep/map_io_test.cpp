@@ -1,5 +1,6 @@
 #include "stickrep/map_io.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -15,6 +16,7 @@ namespace stickrep::map {
 namespace {
 
 using testing::kBoxMapYaml;
+using testing::kCorridorMapYaml;
 
 // The box map with `from` replaced by `to` (the text must contain `from`).
 std::string Edited(const std::string& from, const std::string& to) {
@@ -174,8 +176,53 @@ TEST(MapIoTest, UnknownEdgeTypeIsRejected) {
 }
 
 TEST(MapIoTest, WrongFormatVersionIsRejected) {
-  const InputError e = ParseError(Edited("stickrep_map: 1", "stickrep_map: 2"));
-  EXPECT_EQ(e.key(), "stickrep_map");
+  EXPECT_EQ(ParseError(Edited("stickrep_map: 1", "stickrep_map: 3")).key(), "stickrep_map");
+  EXPECT_EQ(ParseError(Edited("stickrep_map: 1", "stickrep_map: 0")).key(), "stickrep_map");
+}
+
+
+TEST(MapIoTest, Format2KeepsMeasuredDoorWidthsOpeningsAndCorridorOutlines) {
+  const Map map = ParseMap(kCorridorMapYaml, "corridor.yaml");
+  const Ring& c = map.ring(0);
+  EXPECT_EQ(c.outline, Outline::kCorridor);
+  EXPECT_THAT(c.width_in, ::testing::Optional(96.0));
+  // 53 in fits no single class: the nearest, within the tolerance, is the 60 in double.
+  EXPECT_EQ(*c.edges[1].door_class, DoorClass::k30_30);
+  EXPECT_DOUBLE_EQ(c.edges[1].metric_in, 53.0);
+  EXPECT_TRUE(c.edges[3].IsOpening());
+  EXPECT_EQ(*c.edges[7].door_class, DoorClass::k32);
+  EXPECT_DOUBLE_EQ(c.edges[7].metric_in, 34.0);
+  // Written back as format 2, and read again unchanged.
+  const std::string text = WriteMapYaml(map);
+  EXPECT_NE(text.find("stickrep_map: 2"), std::string::npos);
+  EXPECT_NE(text.find("outline: corridor"), std::string::npos);
+  EXPECT_EQ(WriteMapYaml(ParseMap(text, "again.yaml")), text);
+  // A format 1 map is still written as format 1.
+  EXPECT_NE(WriteMapYaml(ParseMap(kBoxMapYaml, "box.yaml")).find("stickrep_map: 1"),
+            std::string::npos);
+}
+
+TEST(MapIoTest, Format2MistakesNameTheKey) {
+  auto edited = [](const std::string& from, const std::string& to) {
+    std::string text = kCorridorMapYaml;
+    return text.replace(text.find(from), from.size(), to);
+  };
+  // 90 in is no door: the message points at openings.
+  InputError e = ParseError(edited("width_in: 53", "width_in: 90"));
+  EXPECT_EQ(e.key(), "rings[0].path[3].edge.width_in");
+  EXPECT_NE(std::string(e.what()).find("opening"), std::string::npos) << e.what();
+  // A class given with a width far from it.
+  e = ParseError(edited("class: \"32\", width_in: 34", "class: \"32\", width_in: 50"));
+  EXPECT_NE(std::string(e.what()).find("cannot be 50 in wide"), std::string::npos) << e.what();
+  e = ParseError(edited("outline: corridor", "outline: both"));
+  EXPECT_NE(std::string(e.what()).find("side, corridor"), std::string::npos) << e.what();
+  e = ParseError(edited("closed: true", "closed: false"));  // and the path ends with an edge
+  EXPECT_EQ(e.line(), 6);
+  // Format 2 features in a format 1 file.
+  e = ParseError(edited("stickrep_map: 2", "stickrep_map: 1"));
+  EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
+  e = ParseError(Edited("{type: hallway, metric_in: 24}", "{type: opening, metric_in: 24}"));
+  EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
 }
 
 TEST(MapIoTest, MissingFileIsAnInputError) {

@@ -9,6 +9,7 @@ SymbolCode CodeOf(const Edge& edge) {
     case EdgeType::kDoorway:
       return DoorCode(*edge.door_class);
     case EdgeType::kHallway:
+    case EdgeType::kOpening:  // passed like wall: no door, no corner (HallwayView merges it)
       return kWallCode;
     case EdgeType::kElevator:
       return kElevatorCode;

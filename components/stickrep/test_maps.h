@@ -40,4 +40,37 @@ joins:
   - {ring: strip, node: 0, to_ring: box, to_node: 0}
 )";
 
+// A corridor outline in format 2: a 96 in corridor 400 in long, walked with the wall on
+// the right (counter-clockwise round the free space: every corner is a 270), with a measured 53 in double door, a 34 in door of class 32 and an opening of
+// 90 in.
+inline const std::string kCorridorMapYaml = R"(stickrep_map: 2
+name: corridor
+rings:
+  - id: c
+    closed: true
+    outline: corridor
+    width_in: 96
+    path:
+      - node: {angle_deg: 270, xyz_in: [96, 0, 0]}
+      - edge: {type: hallway, metric_in: 100}
+      - node: {angle_deg: 180, xyz_in: [96, 100, 0]}
+      - edge: {type: doorway, width_in: 53}
+      - node: {angle_deg: 180, xyz_in: [96, 153, 0]}
+      - edge: {type: hallway, metric_in: 47}
+      - node: {angle_deg: 180, xyz_in: [96, 200, 0]}
+      - edge: {type: opening, metric_in: 90}
+      - node: {angle_deg: 180, xyz_in: [96, 290, 0]}
+      - edge: {type: hallway, metric_in: 110}
+      - node: {angle_deg: 270, xyz_in: [96, 400, 0]}
+      - edge: {type: hallway, metric_in: 96}
+      - node: {angle_deg: 270, xyz_in: [0, 400, 0]}
+      - edge: {type: hallway, metric_in: 166}
+      - node: {angle_deg: 180, xyz_in: [0, 234, 0]}
+      - edge: {type: doorway, class: "32", width_in: 34}
+      - node: {angle_deg: 180, xyz_in: [0, 200, 0]}
+      - edge: {type: hallway, metric_in: 200}
+      - node: {angle_deg: 270, xyz_in: [0, 0, 0]}
+      - edge: {type: hallway, metric_in: 96}
+)";
+
 }  // namespace stickrep::map::testing

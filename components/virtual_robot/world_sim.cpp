@@ -79,11 +79,21 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
 
   world::MapWorldOptions options;
   options.hallway_width_in = config.hallway_width_in;
-  options.opposite_wall = world::OppositeWall::kAlways;
   options.opposite_wall_max_step_in = kMaxStepIn;
   options.open_door_fraction = config.open_door_fraction;
   std::mt19937_64 world_rng(seed ^ 0x9E3779B97F4A7C15ull);
-  scene_ = std::make_unique<world::Scene>(world::BuildRingWorld(map, ring_, options, world_rng).world);
+  if (ring.outline == map::Outline::kCorridor) {
+    // A corridor outline (map format 2) stands in its building: every ring of the floor is
+    // built (columns, other corridors), and walls are added only opposite side rings whose
+    // width the map gives.
+    options.opposite_wall = world::OppositeWall::kAuto;
+    scene_ = std::make_unique<world::Scene>(world::BuildMapWorld(map, options, world_rng).world);
+  } else {
+    // A side ring on its own: the opposite wall at the ring's width, else the configured one.
+    options.opposite_wall = world::OppositeWall::kAlways;
+    scene_ = std::make_unique<world::Scene>(
+        world::BuildRingWorld(map, ring_, options, world_rng).world);
+  }
   for (int i = 0; i < static_cast<int>(scene_->panels().size()); ++i) {
     const world::Panel& p = scene_->panels()[i];
     if (p.acoustic && p.bottom_in < kBaseHeightIn) obstacle_panels_.push_back(i);
@@ -109,7 +119,7 @@ void WorldSim::BuildAxis(const map::Ring& ring) {
   // straight, and the opposite wall (built from the same runs, world::BuildRingWorld).
   const std::vector<world::WallRun> runs =
       world::WithoutSteps(world::SplitIntoWallRuns(ring), closed_, kMaxStepIn);
-  axis_ = world::OffsetRuns(runs, closed_, 0.5 * config_.hallway_width_in);
+  axis_ = world::OffsetRuns(runs, closed_, 0.5 * ring.width_in.value_or(config_.hallway_width_in));
   if (axis_.empty()) throw std::invalid_argument("ring '" + ring.id + "' has no hallway axis");
   axis_of_edge_.assign(edge_count(), -1);
   for (int j = 0; j < static_cast<int>(axis_.size()); ++j) {
@@ -283,6 +293,15 @@ SimTruth WorldSim::Truth() const {
   for (int j = 0; j < segments; ++j) {
     distance[j] = SegmentDistance(p, axis_[j].a_in, axis_[j].b_in, &along_axis[j]);
     if (distance[j] < distance[nearest]) nearest = j;
+  }
+  // The axis of a corridor outline runs down the corridor and back, one stretch per side:
+  // of stretches about as near, the one whose wall the base keeps on its left.
+  const Eigen::Vector2d facing{std::cos(X_WR_.theta_rad), std::sin(X_WR_.theta_rad)};
+  const auto facing_along = [&](int j) { return -facing.dot(Unit(axis_[j].a_in, axis_[j].b_in)); };
+  for (int j = 0; j < segments; ++j) {
+    if (distance[j] < distance[nearest] + 1.0 && facing_along(j) > facing_along(nearest) + 0.5) {
+      nearest = j;
+    }
   }
   double best_alignment = -1.0;
   for (int j = 0; j < segments; ++j) {

@@ -240,7 +240,7 @@ void CheckOptions(const MapWorldOptions& o) {
 }
 
 // Builds the rings listed in `ring_indices` into one world.
-MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, bool opposite,
+MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, OppositeWall opposite,
                const MapWorldOptions& options, std::mt19937_64& rng) {
   CheckOptions(options);
   MapWorld out;
@@ -263,22 +263,38 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, bool o
     const size_t first_geometry = out.edges.size();
     out.edges.resize(first_geometry + ring.edges.size());
     for (const WallRun& run : runs) {
-      // The wall runs against ring order so that the hallway is on its right (world.h).
-      const int wall_index = static_cast<int>(world.walls.size());
-      WallSegment wall;
-      wall.a_in = run.end_in;
-      wall.b_in = run.start_in;
-      wall.height_in = options.wall_height_in;
-      wall.surface = options.wall_surface;
-      wall.intensity = options.wall_intensity;
-      world.walls.push_back(wall);
-      out.wall_ring.push_back(r);
       const double length = run.length_in;
       // Position along the run (ring order) of a node: its projection on the run's line.
       auto along = [&](int node) {
         return std::clamp((NodePoint(ring, node) - run.start_in).dot(run.dir), 0.0, length);
       };
-      for (int e : RunEdges(ring, run)) {
+      const std::vector<int> run_edges = RunEdges(ring, run);
+      // The run's wall, in pieces between its openings (map format 2: gaps the robot passes).
+      // Each piece runs against ring order so that the hallway is on its right (world.h).
+      // piece_end: where along the run the current piece ends; -1: no piece open.
+      int wall_index = -1;
+      double piece_start = 0.0, piece_end = 0.0;
+      auto open_piece = [&](size_t from) {
+        piece_start = from == 0 ? 0.0 : along(run_edges[from]);
+        piece_end = length;
+        for (size_t k = from; k < run_edges.size(); ++k) {
+          if (ring.edges[run_edges[k]].IsOpening()) {
+            piece_end = along(run_edges[k]);
+            break;
+          }
+        }
+        wall_index = static_cast<int>(world.walls.size());
+        WallSegment wall;
+        wall.a_in = run.start_in + run.dir * piece_end;
+        wall.b_in = run.start_in + run.dir * piece_start;
+        wall.height_in = options.wall_height_in;
+        wall.surface = options.wall_surface;
+        wall.intensity = options.wall_intensity;
+        world.walls.push_back(wall);
+        out.wall_ring.push_back(r);
+      };
+      for (size_t k = 0; k < run_edges.size(); ++k) {
+        const int e = run_edges[k];
         const map::Edge& edge = ring.edges[e];
         const double s0 = along(e);
         const double s1 = (e == run.last) ? length : along(e + 1);
@@ -287,20 +303,27 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, bool o
         g.start_in = NodePoint(ring, e);
         g.end_in = NodePoint(ring, e + 1);
         g.metric_in = edge.metric_in;
+        if (edge.IsOpening()) {
+          wall_index = -1;  // nothing is built across an opening
+          continue;
+        }
+        if (wall_index < 0) open_piece(k);
         g.wall_index = wall_index;
         // Centre a feature of width w on the edge's span; in wall coordinates (from a_in).
         auto wall_offset = [&](double w) {
           const double centre = 0.5 * (s0 + s1);
-          const double ring_offset = std::clamp(centre - w / 2.0, 0.0, std::max(0.0, length - w));
-          return length - (ring_offset + w);
+          const double ring_offset =
+              std::clamp(centre - w / 2.0, piece_start, std::max(piece_start, piece_end - w));
+          return piece_end - (ring_offset + w);
         };
         const bool door_like = edge.IsDoor() || edge.type == map::EdgeType::kElevator ||
                                edge.type == map::EdgeType::kStairwell;
         if (door_like) {
           DoorFeature door = options.door_template;
           door.wall_index = wall_index;
-          door.width_in = std::min(
-              edge.IsDoor() ? map::DoorClassWidthIn(*edge.door_class) : edge.metric_in, length);
+          // The measured opening (map format 2), or the class width (format 1 doors carry it
+          // as their metric).
+          door.width_in = std::min(edge.metric_in, piece_end - piece_start);
           door.offset_in = wall_offset(door.width_in);
           door.double_door = door.width_in > kDoubleDoorMinWidthIn;
           door.pattern = DoorPatternOf(edge.pattern);
@@ -359,12 +382,19 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, bool o
   // The opposite hallway walls: parallel to each ring at the hallway width. A shallow step
   // of the mapped wall (a pilaster, an alcove) is that wall's own: the opposite wall runs
   // straight past it.
-  if (opposite) {
-    for (size_t k = 0; k < ring_indices.size(); ++k) {
-      const map::Ring& ring = map.ring(ring_indices[k]);
+  // Only side rings face a wall that is not in the map; a corridor outline has both sides.
+  for (size_t k = 0; k < ring_indices.size(); ++k) {
+    const map::Ring& ring = map.ring(ring_indices[k]);
+    const bool add = ring.outline == map::Outline::kSide &&
+                     (opposite == OppositeWall::kAlways ||
+                      (opposite == OppositeWall::kAuto &&
+                       (ring_indices.size() == 1 || ring.width_in.has_value())));
+    if (!add) continue;
+    {
+      const double width = ring.width_in.value_or(options.hallway_width_in);
       const std::vector<WallRun> straight =
           WithoutSteps(runs_of_ring[k], ring.closed, options.opposite_wall_max_step_in);
-      for (const OffsetSegment& s : OffsetRuns(straight, ring.closed, options.hallway_width_in)) {
+      for (const OffsetSegment& s : OffsetRuns(straight, ring.closed, width)) {
         // In ring order the mapped wall is on this wall's right: the hallway is there.
         WallSegment wall;
         wall.a_in = s.a_in;
@@ -417,16 +447,15 @@ MapWorld BuildRingWorld(const map::Map& map, int ring, const MapWorldOptions& op
                                 " out of range (map has " + std::to_string(map.RingCount()) +
                                 " rings)");
   }
-  const bool opposite = options.opposite_wall != OppositeWall::kNever;
+  const OppositeWall opposite =
+      options.opposite_wall == OppositeWall::kNever ? OppositeWall::kNever : OppositeWall::kAlways;
   return Build(map, {ring}, opposite, options, rng);
 }
 
 MapWorld BuildMapWorld(const map::Map& map, const MapWorldOptions& options, std::mt19937_64& rng) {
   std::vector<int> rings;
   for (int r = 0; r < map.RingCount(); ++r) rings.push_back(r);
-  const bool opposite = options.opposite_wall == OppositeWall::kAlways ||
-                        (options.opposite_wall == OppositeWall::kAuto && rings.size() == 1);
-  return Build(map, rings, opposite, options, rng);
+  return Build(map, rings, options.opposite_wall, options, rng);
 }
 
 std::optional<MapPlace> LocateOnMap(const MapWorld& world, const Eigen::Vector2d& p_W_in,

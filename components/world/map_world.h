@@ -11,10 +11,13 @@
 
 namespace stickrep::world {
 
-// Whether a hallway wall is added opposite the mapped walls.
+// Whether a hallway wall is added opposite the mapped walls of a side ring (map::Outline;
+// a corridor outline has both sides and never gets one). Its distance is the ring's
+// width_in when the map gives it, else MapWorldOptions::hallway_width_in.
 enum class OppositeWall {
-  // Only when a single ring is built: a ring on its own faces nothing, while the rings of a
-  // whole floor face each other across their hallways (a corridor ring round a block ring).
+  // When a single ring is built, and for rings whose width the map gives: a ring on its own
+  // faces nothing, while the rings of a whole floor face each other across their hallways
+  // (a corridor ring round a block ring).
   kAuto,
   kAlways,
   kNever,
@@ -123,9 +126,11 @@ struct MapWorld {
 // One ring of `map` as a world: each straight run of edges (consecutive edges on one line)
 // becomes one wall, its doors and marks set into it at their edge positions; the hallway
 // side is on the left of the ring's direction (maps/README.md: edges are listed walking with
-// the wall on the right). Doorways get their class width (double doors as two leaves),
+// the wall on the right). Doorways get their metric width (double doors as two leaves),
 // patterns become leaf windows or posters on doors and posters, windows or a dark ribbon on
 // other edges; elevators and stairwells are drawn as closed doors of their metric width.
+// Doors are as wide as their metric (the measured width in map format 2); nothing is built
+// across an `opening` edge: the run's wall stops either side of it.
 // Throws std::invalid_argument on a bad ring index or options.
 MapWorld BuildRingWorld(const map::Map& map, int ring, const MapWorldOptions& options,
                         std::mt19937_64& rng);

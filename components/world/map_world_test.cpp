@@ -159,6 +159,64 @@ TEST(MapWorldTest, OnlyOneRingGetsAnOppositeWallByDefault) {
   EXPECT_GT(BuildMapWorld(BoxMap(), always, rng).opposite_wall_count, 0);
 }
 
+TEST(MapWorldTest, CorridorOutlineGetsNoOppositeWallAndOpeningsAreGaps) {
+  const map::Map corridor = map::ParseMap(map::testing::kCorridorMapYaml, "corridor.yaml");
+  std::mt19937_64 rng(3);
+  MapWorldOptions options;
+  options.opposite_wall = OppositeWall::kAlways;  // a corridor outline has both sides anyway
+  const MapWorld mw = BuildRingWorld(corridor, 0, options, rng);
+  EXPECT_EQ(mw.opposite_wall_count, 0);
+  // The opening (edge 3) has no wall; the walls before and after it are separate pieces
+  // that stop at its ends.
+  EXPECT_EQ(mw.edges[3].wall_index, -1);
+  const int before = mw.edges[2].wall_index, after = mw.edges[4].wall_index;
+  ASSERT_GE(before, 0);
+  ASSERT_GE(after, 0);
+  EXPECT_NE(before, after);
+  EXPECT_EQ(mw.edges[1].wall_index, before);  // the door is set in the piece before
+  const WallSegment& wb = mw.world.walls[before];
+  const WallSegment& wa = mw.world.walls[after];
+  // Walls run against ring order: the piece before ends (a_in) where the opening starts.
+  EXPECT_THAT(wb.a_in.y(), DoubleNear(200.0, 1e-9));
+  EXPECT_THAT(wb.b_in.y(), DoubleNear(0.0, 1e-9));
+  EXPECT_THAT(wa.b_in.y(), DoubleNear(290.0, 1e-9));
+  EXPECT_THAT(wa.a_in.y(), DoubleNear(400.0, 1e-9));
+  // Doors are as wide as measured, and lie where the map puts them.
+  ASSERT_EQ(mw.world.doors.size(), 2u);
+  const DoorFeature& wide = mw.world.doors[0];
+  EXPECT_DOUBLE_EQ(wide.width_in, 53.0);
+  EXPECT_TRUE(wide.double_door);
+  EXPECT_THAT(wide.offset_in, DoubleNear(200.0 - 153.0, 1e-9));  // from the piece's a_in end
+  EXPECT_DOUBLE_EQ(mw.world.doors[1].width_in, 34.0);
+  // A point in the opening's gap is free: no wall within 30 in of the gap's middle, bar the
+  // far side of the corridor.
+  Scene scene(mw.world);
+  const Eigen::Vector2d in_gap{96.0, 245.0};
+  for (const Panel& p : scene.panels()) {
+    const Eigen::Vector2d d = p.p1_in - p.p0_in;
+    const double t = std::clamp((in_gap - p.p0_in).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    EXPECT_GT((in_gap - (p.p0_in + t * d)).norm(), 30.0);
+  }
+}
+
+TEST(MapWorldTest, SideRingWithAWidthGetsItsOppositeWallThere) {
+  std::string text = map::testing::kBoxMapYaml;
+  text.replace(text.find("stickrep_map: 1"), 15, "stickrep_map: 2");
+  text.replace(text.find("closed: true"), 12, "closed: true\n    width_in: 50");
+  const map::Map box = map::ParseMap(text, "box.yaml");
+  std::mt19937_64 rng(3);
+  const MapWorld whole = BuildMapWorld(box, MapWorldOptions{}, rng);
+  // Two rings: by default neither faced a wall; the ring with a width gets one, 50 in out.
+  EXPECT_EQ(whole.opposite_wall_count, 4);
+  bool found = false;
+  for (size_t i = 0; i < whole.world.walls.size(); ++i) {
+    if (whole.wall_ring[i] != -1) continue;
+    const WallSegment& w = whole.world.walls[i];
+    if (std::abs(w.a_in.y() - 150.0) < 1e-6 && std::abs(w.b_in.y() - 150.0) < 1e-6) found = true;
+  }
+  EXPECT_TRUE(found) << "no opposite wall 50 in north of the box";
+}
+
 TEST(MapWorldTest, LocatesAWorldPointOnItsEdge) {
   const MapWorld mw = BoxRing();
   const auto place = LocateOnMap(mw, {50.0, 100.5});
