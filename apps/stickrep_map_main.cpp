@@ -1,4 +1,5 @@
-// stickrep-map: validate, census, ambiguity analysis, render and generate StickRep maps.
+// stickrep-map: validate, census, ambiguity analysis, render, generate StickRep maps and
+// build them from floor plan sources.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -58,6 +59,12 @@ int main(int argc, char** argv) {
   auto* seed_opt = generate->add_option("--seed", seed, "Seed (default: the committed map's)");
   generate->add_option("--out", out_path, "Output map file")->required();
 
+  std::string floor_source;
+  auto* floor = app.add_subcommand(
+      "floor", "Build a map (format 2) from a floor plan source (maps/README.md)");
+  floor->add_option("SOURCE", floor_source, "Floor plan source (.floor.yaml)")->required();
+  floor->add_option("--out", out_path, "Output map file")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -79,6 +86,7 @@ int main(int argc, char** argv) {
     return tool::Ambiguity(map_path, amb, std::cout, std::cerr);
   }
   if (*render) return tool::Render(map_path, png, std::cout, std::cerr);
+  if (*floor) return tool::Floor(floor_source, out_path, std::cout, std::cerr);
   if (*generate) {
     std::optional<std::uint64_t> s;
     if (*seed_opt) s = seed;

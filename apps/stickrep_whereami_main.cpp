@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--write-error-model", o.error_model_out,
                  "With --measure-ft: write the measured rates as an error model file");
   app.add_flag("--trace", o.trace, "Print each run's sensed edges beside the map edges passed");
+  app.add_option("--path-png", o.path_png,
+                 "Draw each run's true path over the map into PREFIX_seed<N>.png");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -69,10 +69,10 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
   out.swap(placed_);
   if (corner_) {
     if (!corner_->settled) {
-      const double off = std::remainder(heading_rad - *heading_ref_rad_, 2.0 * M_PI);
-      if (std::abs(off) * 180.0 / M_PI < config_.turn_settled_deg) {
+      if (std::abs(odometer_in_ - corner_->odometer_in) > config_.turn_settled_travel_in) {
         corner_->settled = true;
         corner_->settled_odometer_in = odometer_in_;
+        heading_ref_rad_ = heading_rad;  // the new wall's heading, as driven
       }
     } else if (std::abs(odometer_in_ - corner_->settled_odometer_in) > config_.range_wait_in) {
       PlaceCorner(std::numeric_limits<double>::quiet_NaN(), out);
@@ -96,10 +96,8 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
   }
   unconfirmed_range_in_ = std::numeric_limits<double>::quiet_NaN();
   if (std::abs(turn) * 180.0 / M_PI > config_.corner_turn_deg) {
-    // The reference turns by whole quarter turns: the hallway's corners are square (A3).
-    const double quarter = std::round(turn / (M_PI / 2.0)) * (M_PI / 2.0);
-    BeginCorner(quarter, out);
-    heading_ref_rad_ = std::remainder(*heading_ref_rad_ + quarter, 2.0 * M_PI);
+    // The new reference is taken once the turn is over (Advance, above).
+    BeginCorner(turn, out);
   }
   return out;
 }

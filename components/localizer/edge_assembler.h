@@ -48,12 +48,17 @@ struct EdgeAssemblerConfig {
   // (a wall panel between two casings reads 40 in).
   double max_leaf_in = 38.5;
   double leaf_mismatch_in = 5.0;
-  // A heading change this large is a corner of the hallway: the node between two walls
-  // (90 or 270 degrees, Table 6.1 and 6.3), sensed by odometry as the base turns (A3).
-  double corner_turn_deg = 45.0;
-  // A turn is over once the heading is this close to the reference turned by a multiple
-  // of 90 degrees; the robot holds the new heading, and the wall range read then is the
-  // one after the corner.
+  // A heading change this large is a corner of the hallway: the node between two walls,
+  // sensed by odometry as the base turns in place (A3), a 90 or 270 degree node whatever
+  // the turn (Table 6.1 and 6.3; a hallway that turns by 45 degrees is turned into the
+  // same way). Smaller changes are a wall the follower bends along (the map's hallway view
+  // merges bends up to map::HallwayViewConfig::max_bend_deg, 30 degrees).
+  double corner_turn_deg = 30.0;
+  // A turn is over once the base has travelled this far since it began (it turns in place,
+  // then drives on): the heading then is the new wall's, and the wall range read then is
+  // the one after the corner.
+  double turn_settled_travel_in = 3.0;
+  // Wall ranges are trusted while the heading is within this of the wall's.
   double turn_settled_deg = 10.0;
   // Without a wall range after the turn within this much travel, the range before the
   // turn stands in for it (a symmetric corner).
@@ -158,9 +163,9 @@ class EdgeAssembler {
   // in place, or has just turned and waits for the wall range on its new side.
   struct PendingCorner {
     double odometer_in = 0.0;
-    double turn_rad = 0.0;           // quantised to a multiple of 90 degrees
+    double turn_rad = 0.0;           // when it began: only its sign is used
     double range_before_in = 0.0;    // NaN when no range was read before the turn
-    bool settled = false;            // the heading has reached the new reference
+    bool settled = false;            // the base drives on along the new wall
     double settled_odometer_in = 0.0;
   };
   std::optional<PendingCorner> corner_;

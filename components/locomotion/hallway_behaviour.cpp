@@ -20,6 +20,9 @@ constexpr double kAtRestFtps = 0.05;
 // narrower (a person, a cart) leaves them reading the side walls farther off: at half the
 // width of a 10 ft hallway a 30° sensor's cone meets the wall ahead within 20 in of the axis.
 constexpr double kFlankDeg = 30.0;
+// Scans in a row that must agree (within kObliqueAgreeRad) on an oblique wall ahead.
+constexpr int kObliqueScans = 3;
+constexpr double kObliqueAgreeRad = DegToRad(5.0);
 constexpr double kFlankToleranceIn = 12.0;
 // Once stopped before an obstacle, the base stays put while it is this much farther off.
 constexpr double kObstacleHoldIn = 12.0;
@@ -103,12 +106,15 @@ bool HallwayTracker::heading_known() const {
   return initialised_ && std::sqrt(ppp_) <= DegToRad(noise_.known_heading_sigma_deg);
 }
 
-bool HallwayBehaviour::WallSpansHallway(double wall_in) const {
+bool HallwayBehaviour::WallSpansHallway(double wall_in, double wall_normal_rad) const {
   const HallwayFollowerConfig& c = config_.follower;
   if (static_cast<int>(scan_.size()) != c.sensor_count) return false;
   const double travel_rad = travel_sign_ > 0 ? 0.0 : kPi;
   const double heading = tracker_.heading_known() ? tracker_.heading_rad() : 0.0;
-  const double normal_rad = travel_rad - heading;  // the wall ahead faces back along the axis
+  // The wall ahead faces back along the axis, or turned by its oblique angle; its
+  // perpendicular distance is the along-travel one foreshortened.
+  const double normal_rad = travel_rad - heading + wall_normal_rad;
+  wall_in *= std::cos(wall_normal_rad);
   int seen = 0;
   for (int side : {+1, -1}) {
     // The sensor nearest kFlankDeg off the travel direction on this side.
@@ -174,6 +180,7 @@ void HallwayBehaviour::Reset() {
   last_linear_ftps_ = 0.0;
   last_angular_radps_ = 0.0;
   wall_known_ = false;
+  oblique_scans_ = 0;
   pending_ = TurnKind::kNone;
   pending_rotate_rad_ = 0.0;
 }
@@ -193,9 +200,23 @@ void HallwayBehaviour::OnScan(const std::vector<SonarRange>& scan, double now_s)
       estimate_.hallway_width_in > 2.0 * config_.follower.stop_distance_in) {
     hallway_width_in_ = estimate_.hallway_width_in;
   }
+  if (!std::isfinite(wall)) oblique_scans_ = 0;
   if (std::isfinite(wall)) {
     wall_known_ = true;
     wall_ahead_in_ = wall;
+    // An oblique wall is believed once kObliqueScans scans in a row agree on its angle; a
+    // single one is as likely a crossing's corner seen edge-on.
+    const double normal =
+        travel_sign_ > 0 ? estimate_.wall_forward_normal_rad : estimate_.wall_backward_normal_rad;
+    if (normal == 0.0) {
+      oblique_scans_ = 0;
+    } else if (oblique_scans_ > 0 && std::abs(normal - oblique_normal_rad_) <= kObliqueAgreeRad) {
+      ++oblique_scans_;
+    } else {
+      oblique_scans_ = 1;
+    }
+    oblique_normal_rad_ = normal;
+    wall_normal_rad_ = oblique_scans_ >= kObliqueScans ? normal : 0.0;
     wall_odometer_in_ = previous_odometer_in_;
     wall_time_s_ = now_s;
   }
@@ -285,8 +306,11 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
 
   // The wall across the hallway ahead, dead-reckoned from the scan that saw it.
   const double width_in = hallway_width_in_ > 0.0 ? hallway_width_in_ : config_.default_hallway_width_in;
-  const double stop_at_in = std::max(width_in / 2.0, fc.stop_distance_in);
   if (wall_known_ && now_s - wall_time_s_ > config_.wall_memory_s) wall_known_ = false;
+  // Stop on the axis of the hallway ahead: half its width from the wall ahead, measured
+  // square to that wall (along the travel direction, farther for an oblique one).
+  const double wall_normal = wall_known_ ? wall_normal_rad_ : 0.0;
+  const double stop_at_in = std::max(width_in / 2.0, fc.stop_distance_in) / std::cos(wall_normal);
   double wall_in = kNoObstacle;
   if (wall_known_) wall_in = wall_ahead_in_ - travel_sign_ * (odometer_in - wall_odometer_in_);
 
@@ -300,6 +324,8 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
       wall_in - stop_at_in <= config_.stop_tolerance_in + hold_in) {
     HallwayEstimate seen = estimate_;
     (travel_sign_ > 0 ? seen.wall_forward_in : seen.wall_backward_in) = wall_in;
+    (travel_sign_ > 0 ? seen.wall_forward_normal_rad : seen.wall_backward_normal_rad) =
+        wall_normal;
     HallwayFollowerConfig at = fc;
     at.turn_wall_ahead_in = std::max(fc.turn_wall_ahead_in, stop_at_in + 2.0 * config_.stop_tolerance_in);
     const TurnRequest turn = DetectTurn(seen, travel_sign_, at);
@@ -308,7 +334,7 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
     // off right after aligning): a corner to turn, or the end of the way to reverse from.
     if (!was_obstacle) obstacle_since_s_ = now_s;
     const bool patience_over = was_obstacle && now_s - obstacle_since_s_ >= config_.obstacle_patience_s;
-    if (turn.kind != TurnKind::kNone && !patience_over && !WallSpansHallway(wall_in)) {
+    if (turn.kind != TurnKind::kNone && !patience_over && !WallSpansHallway(wall_in, wall_normal)) {
       // Something in the way, not the end of the hallway: wait here until it goes.
       out.obstacle_stop_started = !was_obstacle;
       state_ = BehaviourState::kObstacle;

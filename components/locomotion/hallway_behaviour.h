@@ -167,7 +167,8 @@ class HallwayBehaviour {
   void Report(BehaviourOutput& out) const;
   // Whether a wall ahead at wall_in spans the hallway (an end, a corner, a junction) rather
   // than standing in it (an obstacle): judged on the newest scan.
-  bool WallSpansHallway(double wall_in) const;
+  // `wall_in` is along the travel direction, `normal_rad` the wall's angle from across.
+  bool WallSpansHallway(double wall_in, double normal_rad) const;
 
   HallwayBehaviourConfig config_;
   HallwayFollower follower_;
@@ -184,6 +185,9 @@ class HallwayBehaviour {
   // Wall ahead in the travel direction, as last seen, and the odometer then.
   bool wall_known_ = false;
   double wall_ahead_in_ = 0.0;
+  double wall_normal_rad_ = 0.0;  // 0: across the hallway; else an oblique corner
+  int oblique_scans_ = 0;         // scans in a row that saw an oblique wall, at about
+  double oblique_normal_rad_ = 0.0;  // this angle
   double wall_odometer_in_ = 0.0;
   double wall_time_s_ = 0.0;
   double obstacle_since_s_ = 0.0;

@@ -81,18 +81,35 @@ SideFit FitSide(const std::vector<Reading>& readings, double normal_rad,
 
 // Distance to the nearest echo not explained by the fitted side walls, within the front
 // sensors of travel bearing `travel_rad`; and whether those echoes form one wall across.
+// The implied distances of `readings` to a wall whose normal points along `normal_rad`, the
+// unexplained ones dropped; their median when at least `need` agree within the spread.
+double AgreedWallDistance(const std::vector<Reading>& readings, double normal_rad, size_t need,
+                          const HallwayFollowerConfig& c) {
+  std::vector<double> implied;
+  for (const Reading& r : readings) {
+    const double d = ImpliedDistanceIn(r, normal_rad, c);
+    if (std::isfinite(d)) implied.push_back(d);
+  }
+  if (implied.size() < need) return kNoObstacle;
+  const auto [lo, hi] = std::minmax_element(implied.begin(), implied.end());
+  return *hi - *lo <= c.wall_ahead_spread_in ? Median(implied) : kNoObstacle;
+}
+
 void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double heading_error_rad,
                const HallwayEstimate& walls, const HallwayFollowerConfig& c, double& free_in,
-               double& wall_in) {
+               double& wall_in, double& wall_normal_rad) {
   free_in = kNoObstacle;
   wall_in = kNoObstacle;
+  wall_normal_rad = 0.0;
   const double half_cone = DegToRad(c.cone_deg) / 2.0;
-  std::vector<double> across;
+  std::vector<Reading> front, wide;  // unexplained echoes ahead, and within the oblique fan
   for (int k = 0; k < c.sensor_count; ++k) {
     if (!scan[k].valid) continue;
     const double bearing = SensorBearingRad(k, c);
     const double off = std::abs(WrapPi(bearing - travel_rad));
-    if (off > DegToRad(c.front_half_angle_deg) + 1e-9) continue;
+    if (off > DegToRad(std::max(c.front_half_angle_deg, c.oblique_half_angle_deg)) + 1e-9) {
+      continue;
+    }
     const double r = scan[k].range_in;
     double side_range = kNoObstacle;
     for (const WallLine* w : {&walls.left, &walls.right}) {
@@ -101,19 +118,32 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
           std::min(side_range, PredictedWallRangeIn(bearing, w->normal_rad, w->distance_in, c));
     }
     if (r >= side_range - c.side_echo_margin_in) continue;
+    wide.push_back({bearing, r});
+    if (off > DegToRad(c.front_half_angle_deg) + 1e-9) continue;
+    front.push_back({bearing, r});
     // The echo may come from anywhere in the cone; the direction nearest the travel axis
     // gives the most cautious along-travel distance.
     free_in = std::min(free_in, (c.head_radius_in + r) * std::cos(std::max(0.0, off - half_cone)));
-    // A wall across the hallway has its normal along the hallway axis.
-    const double axis_rad = travel_rad - heading_error_rad;
-    across.push_back(ImpliedDistanceIn(Reading{bearing, r}, axis_rad, c));
   }
-  across.erase(
-      std::remove_if(across.begin(), across.end(), [](double d) { return !std::isfinite(d); }),
-      across.end());
-  if (across.size() >= 2) {
-    const auto [lo, hi] = std::minmax_element(across.begin(), across.end());
-    if (*hi - *lo <= c.wall_ahead_spread_in) wall_in = Median(across);
+  // A wall across the hallway has its normal along the hallway axis.
+  const double axis_rad = travel_rad - heading_error_rad;
+  wall_in = AgreedWallDistance(front, axis_rad, 2, c);
+  // Only when the front sensors see something that is not across the hallway (at an
+  // oblique wall the gate often leaves one of them: the others meet it too steeply).
+  if (std::isfinite(wall_in) || front.empty()) return;
+  // Not across: a wall at another angle (the hallway turns by less than a right angle), its
+  // normal searched outward from the axis; the smallest angle three sensors agree on.
+  const double step = DegToRad(2.5);
+  for (double psi = DegToRad(c.min_oblique_wall_deg); psi <= DegToRad(c.max_oblique_wall_deg) + 1e-9;
+       psi += step) {
+    for (double signed_psi : {psi, -psi}) {
+      const double d = AgreedWallDistance(wide, axis_rad + signed_psi, 3, c);
+      if (!std::isfinite(d)) continue;
+      // Along the travel direction, the plane at perpendicular distance d lies d / cos.
+      wall_in = d / std::cos(std::abs(WrapPi(axis_rad + signed_psi - travel_rad)));
+      wall_normal_rad = signed_psi;
+      return;
+    }
   }
 }
 
@@ -211,8 +241,10 @@ HallwayEstimate EstimateHallway(const std::vector<SonarRange>& scan,
     est.lateral_offset_in = (est.right.distance_in - est.left.distance_in) / 2.0;
     est.hallway_width_in = est.right.distance_in + est.left.distance_in;
   }
-  LookAhead(scan, 0.0, est.heading_error_rad, est, c, est.free_forward_in, est.wall_forward_in);
-  LookAhead(scan, kPi, est.heading_error_rad, est, c, est.free_backward_in, est.wall_backward_in);
+  LookAhead(scan, 0.0, est.heading_error_rad, est, c, est.free_forward_in, est.wall_forward_in,
+            est.wall_forward_normal_rad);
+  LookAhead(scan, kPi, est.heading_error_rad, est, c, est.free_backward_in, est.wall_backward_in,
+            est.wall_backward_normal_rad);
   return est;
 }
 
@@ -223,6 +255,17 @@ TurnRequest DetectTurn(const HallwayEstimate& estimate, int travel_sign,
   turn.wall_ahead_in = wall;
   if (!(wall <= config.turn_wall_ahead_in)) return turn;
   const int sign = travel_sign >= 0 ? +1 : -1;
+  const double normal = travel_sign >= 0 ? estimate.wall_forward_normal_rad
+                                         : estimate.wall_backward_normal_rad;
+  if (!(estimate.left_open && estimate.right_open) &&
+      std::abs(normal) >= DegToRad(config.min_oblique_wall_deg) - 1e-9) {
+    // An oblique wall ahead: the hallway turns away from its normal, by less than a right
+    // angle, whether or not the side it turns to reads open yet (at a bend of 45 degrees
+    // the inner wall still stands within range abreast of the base).
+    turn.kind = TurnKind::kCorner;
+    turn.rotate_rad = -std::copysign(kPi / 2.0 - std::abs(normal), normal);
+    return turn;
+  }
   if (estimate.left_open && estimate.right_open) {
     turn.kind = TurnKind::kJunction;
   } else if (estimate.left_open) {

@@ -85,6 +85,14 @@ struct HallwayFollowerConfig {
   // All front sensors agreeing on one plane across the travel direction to within this
   // much make a wall ahead (the hallway's end or a corner), not a narrow obstacle.
   double wall_ahead_spread_in = 8.0;
+  // A wall ahead that is not across the hallway (a corner at another angle than 90°: the
+  // hallway turns by less than a right angle) is searched for with its normal up to this
+  // far off the hallway axis, among the sensors within oblique_half_angle_deg of the travel
+  // direction; it takes three of them agreeing. Walls turned less than
+  // min_oblique_wall_deg count as across.
+  double max_oblique_wall_deg = 60.0;
+  double oblique_half_angle_deg = 45.0;
+  double min_oblique_wall_deg = 15.0;
 
   // --- Control ---
   double max_speed_ftps = 2.6;  // §6.3: the LabMate's rated speed
@@ -141,10 +149,14 @@ struct HallwayEstimate {
   // forward (+x) and backward (-x); kNoObstacle when the way is clear.
   double free_forward_in = kNoObstacle;
   double free_backward_in = kNoObstacle;
-  // A wall across the hallway ahead / behind (all front sensors agree on one plane);
-  // kNoObstacle when there is none.
+  // A wall ahead / behind (the front sensors agree on one plane): its distance along the
+  // direction of travel, kNoObstacle when there is none, and the angle of its normal from
+  // the hallway axis in that direction (0: across the hallway, a square corner or end;
+  // CCW positive, so a wall ahead on the right is negative).
   double wall_forward_in = kNoObstacle;
   double wall_backward_in = kNoObstacle;
+  double wall_forward_normal_rad = 0.0;
+  double wall_backward_normal_rad = 0.0;
   // No reading within side_open_range_in on that side: the wall has disappeared.
   bool left_open = false;
   bool right_open = false;
@@ -163,8 +175,10 @@ const char* ToString(TurnKind kind);
 struct TurnRequest {
   TurnKind kind = TurnKind::kNone;
   // In-place rotation that lines the travel direction up with the open side (+pi/2 CCW,
-  // -pi/2 CW). 0 for a junction (either way) and a hallway end (travel reverses: the base
-  // drives backward with the camera still on the wall, no rotation needed).
+  // -pi/2 CW), or with the wall ahead when it is oblique (the hallway turns by less than a
+  // right angle: pi/2 less the wall's angle, away from its normal). 0 for a junction
+  // (either way) and a hallway end (travel reverses: the base drives backward with the
+  // camera still on the wall, no rotation needed).
   double rotate_rad = 0.0;
   double wall_ahead_in = kNoObstacle;
 };

@@ -110,8 +110,21 @@ Edge Edge::Door(DoorClass door_class, std::string pattern) {
   return e;
 }
 
-Map::Map(MapInfo info, std::vector<Ring> rings, std::vector<Join> joins)
-    : info_(std::move(info)), rings_(std::move(rings)), joins_(std::move(joins)) {
+Map::Map(MapInfo info, std::vector<Ring> rings, std::vector<Join> joins,
+         std::vector<Obstacle> obstacles)
+    : info_(std::move(info)),
+      rings_(std::move(rings)),
+      joins_(std::move(joins)),
+      obstacles_(std::move(obstacles)) {
+  for (const Obstacle& o : obstacles_) {
+    if (o.id.empty()) Invalid("an obstacle has an empty id");
+    if (o.polygon_in.size() < 3) Invalid("obstacle '" + o.id + "' has fewer than 3 corners");
+    for (const auto& p : o.polygon_in) {
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1])) {
+        Invalid("obstacle '" + o.id + "' has a corner that is not a finite number");
+      }
+    }
+  }
   if (rings_.empty()) Invalid("a map needs at least one ring");
   std::set<std::string> ids;
   for (const Ring& ring : rings_) {

@@ -6,6 +6,7 @@
 // Standard library only: the simulation study and the localizer link this without DDS or
 // OpenCV.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -122,6 +123,14 @@ struct Join {
   int to_node = 0;
 };
 
+// A solid the robot passes but never follows (map format 2): a free-standing column, a
+// pier, a display case. The world builds it; the localizer does not match it. Its outline
+// is a closed polygon in the building frame (at least 3 corners, any orientation).
+struct Obstacle {
+  std::string id;
+  std::vector<std::array<double, 2>> polygon_in;
+};
+
 // Where a map came from: free text plus, for generated maps, the generator and its seed.
 struct MapInfo {
   std::string name;
@@ -148,11 +157,13 @@ struct Cursor {
 class Map {
  public:
   Map() = default;
-  Map(MapInfo info, std::vector<Ring> rings, std::vector<Join> joins = {});
+  Map(MapInfo info, std::vector<Ring> rings, std::vector<Join> joins = {},
+      std::vector<Obstacle> obstacles = {});
 
   const MapInfo& info() const { return info_; }
   const std::vector<Ring>& rings() const { return rings_; }
   const std::vector<Join>& joins() const { return joins_; }
+  const std::vector<Obstacle>& obstacles() const { return obstacles_; }
   int RingCount() const { return static_cast<int>(rings_.size()); }
   const Ring& ring(int r) const { return rings_[r]; }
   // Index of the ring called `id`, or -1.
@@ -176,6 +187,7 @@ class Map {
   MapInfo info_;
   std::vector<Ring> rings_;
   std::vector<Join> joins_;
+  std::vector<Obstacle> obstacles_;
   int edge_count_ = 0;
 };
 

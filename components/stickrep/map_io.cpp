@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -263,7 +264,7 @@ Map ParseMap(const std::string& text, const std::string& name) {
   if (root.Has("generator")) {
     const StrictYaml g = root.Child("generator");
     info.generator = g.Get<std::string>("program");
-    info.seed = g.Get<std::uint64_t>("seed");
+    if (g.Has("seed")) info.seed = g.Get<std::uint64_t>("seed");  // generators that draw
     g.Finish();
   } else {
     root.GetOr<std::string>("generator", "");
@@ -308,9 +309,35 @@ Map ParseMap(const std::string& text, const std::string& name) {
   } else {
     root.GetOr<std::string>("joins", "");
   }
+  std::vector<Obstacle> obstacles;
+  if (root.Has("obstacles")) {
+    if (version < 2) root.Fail("obstacles", "needs map format 2 (stickrep_map: 2)");
+    std::set<std::string> ids;
+    for (const StrictYaml& oy : root.Sequence("obstacles")) {
+      Obstacle o;
+      o.id = oy.Get<std::string>("id");
+      if (!IsIdentifier(o.id)) oy.Fail("id", "an obstacle id is one word (letters, digits, _-.)");
+      if (!ids.insert(o.id).second) oy.Fail("id", "obstacle id '" + o.id + "' is used twice");
+      const std::vector<StrictYaml> corners = oy.Sequence("polygon_in");
+      if (corners.size() < 3) oy.Fail("polygon_in", "a polygon needs at least 3 corners");
+      for (const StrictYaml& c : corners) {
+        const std::vector<StrictYaml> xy = c.Elements();
+        if (xy.size() != 2) {
+          throw InputError(c.file(), c.line(), c.path(), "a corner is [x, y] in inches");
+        }
+        const double x = xy[0].As<double>(), y = xy[1].As<double>();
+        if (std::abs(x) > 1e7 || std::abs(y) > 1e7) {
+          throw InputError(c.file(), c.line(), c.path(), "coordinate out of range (|value| > 1e7)");
+        }
+        o.polygon_in.push_back({x, y});
+      }
+      oy.Finish();
+      obstacles.push_back(std::move(o));
+    }
+  }
   root.Finish();
   try {
-    return Map(std::move(info), std::move(rings), std::move(joins));
+    return Map(std::move(info), std::move(rings), std::move(joins), std::move(obstacles));
   } catch (const std::invalid_argument& e) {
     // The checks above should have caught everything with a line number already.
     throw InputError(name, 0, "", e.what());
@@ -351,6 +378,7 @@ std::string Quote(const std::string& s) {
 }  // namespace
 
 bool NeedsFormat2(const Map& map) {
+  if (!map.obstacles().empty()) return true;
   for (const Ring& ring : map.rings()) {
     if (ring.outline != Outline::kSide || ring.width_in) return true;
     for (const Edge& e : ring.edges) {
@@ -368,14 +396,15 @@ std::string WriteMapYaml(const Map& map) {
   std::ostringstream out;
   out << "# StickRep map (format: maps/README.md). Lengths in inches, angles in degrees.\n";
   if (!info.generator.empty()) {
-    out << "# Generated; edit the generator, not this file, and regenerate with the seed below.\n";
+    out << (info.seed ? "# Generated; edit the generator, not this file, and regenerate with the seed below.\n"
+                      : "# Generated from a source; edit the source, not this file, and regenerate.\n");
   }
   out << "stickrep_map: " << (NeedsFormat2(map) ? 2 : 1) << "\n";
   out << "name: " << info.name << "\n";
   if (!info.description.empty()) out << "description: " << Quote(info.description) << "\n";
   if (!info.generator.empty()) {
     out << "generator:\n  program: " << Quote(info.generator) << "\n";
-    out << "  seed: " << info.seed.value_or(0) << "\n";
+    if (info.seed) out << "  seed: " << *info.seed << "\n";
   }
   out << "rings:\n";
   for (const Ring& ring : map.rings()) {
@@ -410,6 +439,17 @@ std::string WriteMapYaml(const Map& map) {
         out << ", prototype: " << PrototypeName(e.prototype);
       if (!e.pattern.empty()) out << ", pattern: " << e.pattern;
       out << "}\n";
+    }
+  }
+  if (!map.obstacles().empty()) {
+    out << "obstacles:\n";
+    for (const Obstacle& o : map.obstacles()) {
+      out << "  - id: " << o.id << "\n    polygon_in: [";
+      for (size_t i = 0; i < o.polygon_in.size(); ++i) {
+        out << (i ? ", " : "") << "[" << FormatNumber(o.polygon_in[i][0]) << ", "
+            << FormatNumber(o.polygon_in[i][1]) << "]";
+      }
+      out << "]\n";
     }
   }
   if (!map.joins().empty()) {

@@ -8,6 +8,7 @@
 #include "stickrep/ambiguity_report.h"
 #include "stickrep/census.h"
 #include "stickrep/census_report.h"
+#include "stickrep/floor_plan.h"
 #include "stickrep/map_generators.h"
 #include "stickrep/map_io.h"
 #include "stickrep/map_render.h"
@@ -90,6 +91,25 @@ int Render(const std::string& path, const std::string& png, std::ostream& out, s
     const Map map = LoadMap(path);
     RenderMapPng(map, png);
     out << "wrote " << png << "\n";
+    return 0;
+  });
+}
+
+int Floor(const std::string& source, const std::string& out_path, std::ostream& out,
+          std::ostream& err) {
+  return Guard(err, [&] {
+    const Map map = LoadFloorPlan(source);
+    SaveMap(map, out_path);
+    int doors = 0, openings = 0;
+    for (const Ring& ring : map.rings()) {
+      for (const Edge& e : ring.edges) {
+        doors += e.IsDoor() ? 1 : 0;
+        openings += e.IsOpening() ? 1 : 0;
+      }
+    }
+    out << "built " << map.info().name << " from " << source << " -> " << out_path << " ("
+        << map.RingCount() << " corridor outlines, " << map.EdgeCount() << " edges: " << doors
+        << " doors, " << openings << " openings; " << map.obstacles().size() << " obstacles)\n";
     return 0;
   });
 }

@@ -32,6 +32,10 @@ int Ambiguity(const std::string& path, const AmbiguityCommand& command, std::ost
 
 int Render(const std::string& path, const std::string& png, std::ostream& out, std::ostream& err);
 
+// Builds the map of a floor plan source (floor_plan.h) into `out_path`.
+int Floor(const std::string& source, const std::string& out_path, std::ostream& out,
+          std::ostream& err);
+
 // Generates a domain (seed defaults to the one its committed map was made with) into `out_path`.
 int Generate(const std::string& domain, std::optional<std::uint64_t> seed,
              const std::string& out_path, std::ostream& out, std::ostream& err);

@@ -14,6 +14,7 @@
 
 #include "common/input_error.h"
 #include "recovery/study_report.h"
+#include "stickrep/map_render.h"
 
 namespace stickrep::whereami {
 
@@ -82,6 +83,7 @@ std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& option
         run.kidnap_after_s = options.kidnap_after_s;
         run.kidnap_jump_in = options.kidnap_jump_in;
         run.trace = options.trace;
+        run.record_path = !options.path_png.empty();
         run.measure_ft = options.measure_ft;
         if (!options.rings.empty()) run.ring_id = options.rings[i % options.rings.size()];
         result = RunWhereAmI(setup, run);
@@ -214,6 +216,19 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
       if (options.trace) {
         out << "            sensed: " << r.sensed_trace << "\n            passed: " << r.true_trace
             << "\n";
+      }
+      if (options.trace) {
+        for (const std::string& line : r.behaviour_log) out << "            " << line << "\n";
+      }
+      if (!options.path_png.empty() && !r.path.empty()) {
+        map::RenderOptions picture;
+        picture.paths.push_back({r.path});
+        picture.markers.push_back({r.path.front().first, r.path.front().second, "start"});
+        picture.markers.push_back({r.path.back().first, r.path.back().second,
+                                   ToString(r.ending())});
+        const std::string file = fmt::format("{}_seed{}.png", options.path_png, r.seed);
+        map::RenderMapPng(*setup.map, file, picture);
+        out << "            path drawn in " << file << "\n";
       }
       runs.push_back({{"seed", r.seed},
                       {"start", r.start},

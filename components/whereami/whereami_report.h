@@ -25,6 +25,8 @@ struct ToolOptions {
   double kidnap_jump_in = 2500.0;
   std::string json_path;           // empty: none
   bool trace = false;              // print each run's sensed and true edge sequences
+  // Draw each run's true path over the map: <path_png>_seed<N>.png (empty: none).
+  std::string path_png;
   // Rings to start on, run i on rings[i % size]; empty: the virtual robot's ring.
   std::vector<std::string> rings;
   // Measuring the assembled edges' errors over this much travel per run instead of

@@ -112,6 +112,7 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
 
   const sonar::SonarGateConfig gate = sonar::GateConfigFor(robot);
   locomotion::HallwayBehaviour behaviour(setup.locomotion.behaviour);
+  locomotion::BehaviourState last_state = locomotion::BehaviourState::kNoScan;
   locomotion::Odometer odometer(robot.base.wheel_base_in);
   const landmark::LandmarkPipeline pipeline(robot, setup.landmark.detector,
                                             setup.landmark.estimator);
@@ -274,6 +275,10 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
                            odometer.distance_in(), t, encoders.period_s);
         wheels = locomotion::ToWheelSpeeds(out.linear_ftps, out.angular_radps,
                                            setup.locomotion.limits);
+        if (options.trace && out.state != last_state && result.behaviour_log.size() < 200) {
+          result.behaviour_log.push_back(fmt::format("{:7.1f} s  {}", t, out.reason));
+        }
+        last_state = out.state;
         executive.mission().OnMotionState(out.in_envelope, t);
       } else {
         moving = false;
@@ -288,6 +293,13 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
     }
     sim.Step(sim_step.period_s, wheels.left_ftps, wheels.right_ftps);
     const virtual_robot::SimTruth truth = sim.Truth();
+    if (options.record_path) {
+      const std::pair<double, double> at{truth.X_WR.x_in, truth.X_WR.y_in};
+      if (result.path.empty() || std::hypot(at.first - result.path.back().first,
+                                            at.second - result.path.back().second) > 3.0) {
+        result.path.push_back(at);
+      }
+    }
     if (truth.corner_distance_in > kEnvelopeCornerDistanceIn &&
         truth.distance_in > kEnvelopeSettleDistanceIn) {
       result.max_offset_in = std::max(result.max_offset_in, std::abs(truth.lateral_offset_in));

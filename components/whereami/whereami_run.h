@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "executive/executive_config.h"
@@ -54,6 +55,8 @@ struct RunOptions {
   double kidnap_jump_in = 0.0;
   // Record the sensed sequence and the map edges the camera passed (RunResult::trace).
   bool trace = false;
+  // Record the base's true path (RunResult::path).
+  bool record_path = false;
   // Replaces the virtual robot's ring (empty: keep it).
   std::string ring_id;
   // Measuring the assembled edges' errors (RunResult::errors) instead of localizing: the
@@ -100,6 +103,12 @@ struct RunResult {
   // edges of the map (as the hallway follower senses it) that the camera's axis passed.
   std::string sensed_trace;
   std::string true_trace;
+  // With RunOptions::record_path: the base's true position (x, y in inches, building frame)
+  // every few inches of travel.
+  std::vector<std::pair<double, double>> path;
+  // With RunOptions::trace: the hallway behaviour's changes of state, with the simulated
+  // time and its reason (the first 200).
+  std::vector<std::string> behaviour_log;
   // With RunOptions::measure_ft: the assembled edges against the truth, from 20 ft on.
   EdgeErrorCounts errors;
   bool failed = false;              // the run could not be run; `ended` says why

@@ -382,6 +382,30 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, Opposi
   // The opposite hallway walls: parallel to each ring at the hallway width. A shallow step
   // of the mapped wall (a pilaster, an alcove) is that wall's own: the opposite wall runs
   // straight past it.
+  // Obstacles (columns, piers): closed outlines, faces outward.
+  for (const map::Obstacle& o : map.obstacles()) {
+    const size_t n = o.polygon_in.size();
+    double area2 = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      const auto& p = o.polygon_in[i];
+      const auto& q = o.polygon_in[(i + 1) % n];
+      area2 += p[0] * q[1] - q[0] * p[1];
+    }
+    // Counter-clockwise, a wall from corner i to i + 1 has the outside on its right.
+    for (size_t k = 0; k < n; ++k) {
+      const size_t i = area2 >= 0.0 ? k : n - 1 - k;
+      const size_t j = area2 >= 0.0 ? (k + 1) % n : (2 * n - 2 - k) % n;
+      WallSegment wall;
+      wall.a_in = {o.polygon_in[i][0], o.polygon_in[i][1]};
+      wall.b_in = {o.polygon_in[j][0], o.polygon_in[j][1]};
+      wall.height_in = options.wall_height_in;
+      wall.surface = options.wall_surface;
+      wall.intensity = options.wall_intensity;
+      world.walls.push_back(wall);
+      out.wall_ring.push_back(-1);
+    }
+  }
+
   // Only side rings face a wall that is not in the map; a corridor outline has both sides.
   for (size_t k = 0; k < ring_indices.size(); ++k) {
     const map::Ring& ring = map.ring(ring_indices[k]);
