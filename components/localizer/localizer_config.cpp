@@ -1,6 +1,7 @@
 #include "localizer/localizer_config.h"
 
 #include "common/config_paths.h"
+#include "localizer/sensed_doors.h"
 #include "recovery/error_model.h"
 #include "stickrep/sequence_matcher.h"
 
@@ -29,6 +30,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
   s.view.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
   s.view.max_bend_deg = c.Get<double>("max_bend_deg", 0.0, 60.0, "deg");
+  s.view.sensed_door_class = SensedDoorClass;
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
   s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);

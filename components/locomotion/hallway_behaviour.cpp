@@ -200,26 +200,29 @@ void HallwayBehaviour::OnScan(const std::vector<SonarRange>& scan, double now_s)
       estimate_.hallway_width_in > 2.0 * config_.follower.stop_distance_in) {
     hallway_width_in_ = estimate_.hallway_width_in;
   }
-  if (!std::isfinite(wall)) oblique_scans_ = 0;
-  if (std::isfinite(wall)) {
-    wall_known_ = true;
-    wall_ahead_in_ = wall;
-    // An oblique wall is believed once kObliqueScans scans in a row agree on its angle; a
-    // single one is as likely a crossing's corner seen edge-on.
-    const double normal =
-        travel_sign_ > 0 ? estimate_.wall_forward_normal_rad : estimate_.wall_backward_normal_rad;
-    if (normal == 0.0) {
-      oblique_scans_ = 0;
-    } else if (oblique_scans_ > 0 && std::abs(normal - oblique_normal_rad_) <= kObliqueAgreeRad) {
-      ++oblique_scans_;
-    } else {
-      oblique_scans_ = 1;
-    }
-    oblique_normal_rad_ = normal;
-    wall_normal_rad_ = oblique_scans_ >= kObliqueScans ? normal : 0.0;
-    wall_odometer_in_ = previous_odometer_in_;
-    wall_time_s_ = now_s;
+  if (!std::isfinite(wall)) {
+    oblique_scans_ = 0;
+    return;
   }
+  // An oblique wall is believed once kObliqueScans scans in a row agree on its angle; one
+  // scan's is as likely a crossing's corner seen edge-on, or an open door's leaf. Until
+  // then the wall ahead stays as it was.
+  const double normal =
+      travel_sign_ > 0 ? estimate_.wall_forward_normal_rad : estimate_.wall_backward_normal_rad;
+  if (normal == 0.0) {
+    oblique_scans_ = 0;
+  } else if (oblique_scans_ > 0 && std::abs(normal - oblique_normal_rad_) <= kObliqueAgreeRad) {
+    ++oblique_scans_;
+  } else {
+    oblique_scans_ = 1;
+  }
+  oblique_normal_rad_ = normal;
+  if (normal != 0.0 && oblique_scans_ < kObliqueScans) return;
+  wall_known_ = true;
+  wall_ahead_in_ = wall;
+  wall_normal_rad_ = normal;
+  wall_odometer_in_ = previous_odometer_in_;
+  wall_time_s_ = now_s;
 }
 
 void HallwayBehaviour::Report(BehaviourOutput& out) const {

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -161,6 +162,49 @@ TEST(HallwayBehaviourTest, ReversesAtAHallwayEnd) {
   ASSERT_TRUE(r.Until([&] { return r.x < x_at_end - 120.0; }, 30.0));
   EXPECT_EQ(r.turns, 0);
   EXPECT_NEAR(r.psi, 0.0, DegToRad(3.0));  // backward, still facing the same way
+}
+
+// A 96 in hallway along +x that bends by `bend_deg` to the left (toward the camera's wall)
+// at x = 0: the walls meet at 180 - bend on the inside and 180 + bend outside.
+std::vector<Segment> Bend(double bend_deg) {
+  const double h = 48.0, a = DegToRad(bend_deg);
+  const double inner = -h * std::tan(a / 2.0), outer = h * std::tan(a / 2.0);
+  const double dx = 2000 * std::cos(a), dy = 2000 * std::sin(a);
+  return {{{-2000, h}, {inner, h}}, {{inner, h}, {inner + dx, h + dy}},
+          {{-2000, -h}, {outer, -h}}, {{outer, -h}, {outer + dx, -h + dy}}};
+}
+
+double Clearance(const std::vector<Segment>& walls, double x, double y) {
+  double best = 1e9;
+  for (const Segment& s : walls) {
+    const double ex = s.b.x - s.a.x, ey = s.b.y - s.a.y;
+    const double t =
+        std::clamp(((x - s.a.x) * ex + (y - s.a.y) * ey) / (ex * ex + ey * ey), 0.0, 1.0);
+    best = std::min(best, std::hypot(x - (s.a.x + t * ex), y - (s.a.y + t * ey)));
+  }
+  return best;
+}
+
+TEST(HallwayBehaviourTest, TurnsAtCornersThatAreNotSquareByWhatTheHallwayTurns) {
+  for (double bend : {45.0, 60.0}) {
+    Drive r(Bend(bend));
+    double closest = 1e9;
+    const double ux = std::cos(DegToRad(bend)), uy = std::sin(DegToRad(bend));
+    // 20 ft down the new stretch, along its axis.
+    ASSERT_TRUE(r.Until(
+        [&] {
+          closest = std::min(closest, Clearance(r.walls, r.x, r.y));
+          return r.x * ux + r.y * uy > 240.0;
+        },
+        90.0))
+        << bend << " deg: " << r.out.reason;
+    EXPECT_EQ(r.turns, 1) << bend;
+    EXPECT_EQ(r.reversals, 0) << bend;
+    EXPECT_NEAR(r.psi, DegToRad(bend), DegToRad(6.0)) << bend;
+    // On the new axis within a few inches, and never near a wall (the base is 15 in across).
+    EXPECT_NEAR(-r.x * uy + r.y * ux, 0.0, 8.0) << bend;
+    EXPECT_GT(closest, 24.0) << bend;
+  }
 }
 
 TEST(HallwayBehaviourTest, AtAJunctionTurnsTowardTheCameraSide) {

@@ -139,6 +139,13 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
     for (double signed_psi : {psi, -psi}) {
       const double d = AgreedWallDistance(wide, axis_rad + signed_psi, 3, c);
       if (!std::isfinite(d)) continue;
+      // It stands ahead: a front sensor reads it (not only the flanks, which also meet a
+      // side wall the fit leaves unexplained).
+      const bool ahead = std::any_of(front.begin(), front.end(), [&](const Reading& r) {
+        return std::abs(ImpliedDistanceIn(r, axis_rad + signed_psi, c) - d) <=
+               c.wall_ahead_spread_in;
+      });
+      if (!ahead) continue;
       // Along the travel direction, the plane at perpendicular distance d lies d / cos.
       wall_in = d / std::cos(std::abs(WrapPi(axis_rad + signed_psi - travel_rad)));
       wall_normal_rad = signed_psi;

@@ -54,7 +54,7 @@ struct Feature {
   double at_in = 0.0;
   double width_in = 0.0;
   Kind kind = Kind::kWall;  // kDoor, kOpening, or kWall for an alcove
-  double depth_in = 0.0;    // alcoves only
+  double depth_in = 0.0;    // alcoves (into the wall); piers are negative (out of it)
   std::vector<AlcoveDoor> doors;
   StrictYaml where;
 };
@@ -76,6 +76,16 @@ Feature ReadFeature(const StrictYaml& y) {
   if (y.Has("opening_in")) {
     f.kind = Kind::kOpening;
     f.width_in = y.Get<double>("opening_in", 1.0, 1e5, "in");
+    ++kinds;
+  }
+  if (y.Has("pier")) {
+    // A pilaster or an engaged column standing out of the wall into the corridor: an alcove
+    // of negative depth, with no doors.
+    const StrictYaml a = y.Child("pier");
+    f.kind = Kind::kWall;
+    f.width_in = a.Get<double>("width_in", 1.0, 1e4, "in");
+    f.depth_in = -a.Get<double>("depth_in", 1.0, 1e4, "in");
+    a.Finish();
     ++kinds;
   }
   if (y.Has("alcove")) {
@@ -106,7 +116,7 @@ Feature ReadFeature(const StrictYaml& y) {
     ++kinds;
   }
   if (kinds != 1) {
-    y.Fail("", "a feature is exactly one of door_in, opening_in, alcove");
+    y.Fail("", "a feature is exactly one of door_in, opening_in, alcove, pier");
   }
   y.Finish();
   return f;
@@ -239,7 +249,12 @@ std::vector<SidePoint> BuildSide(const Corridor& c, int sign, const std::vector<
         push(abreast(b), Kind::kWall);
         continue;
       }
-      // An alcove: in by its depth, along its back wall (doors set in it), out again.
+      // An alcove: in by its depth, along its back wall (doors set in it), out again. A pier
+      // the same the other way.
+      if (-f.depth_in >= c.width_in / 2.0) {
+        f.where.Fail("pier", "a pier " + FormatNumber(-f.depth_in) +
+                                 " in deep reaches the corridor's centreline");
+      }
       const Vec in = abreast(a) + o * f.depth_in;
       push(abreast(a), Kind::kWall);
       push(in, Kind::kWall);

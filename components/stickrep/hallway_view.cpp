@@ -11,13 +11,22 @@ namespace {
 
 bool IsCorner(double angle_deg) { return std::abs(angle_deg - 180.0) > 1.0; }
 
-// Walls and openings are both passed along the wall (an opening shows no door).
-bool WallLike(const Edge& e) { return e.IsWall() || e.IsOpening(); }
-
-// The edge as the follower senses it: an opening is wall length.
-Edge Sensed(const Edge& e) { return e.IsOpening() ? Edge::Wall(e.metric_in) : e; }
-
 }  // namespace
+
+Edge HallwayView::Sensed(const Edge& e) const {
+  if (e.IsOpening()) return Edge::Wall(e.metric_in);  // passed along the wall
+  if (e.IsDoor() && config_.sensed_door_class) {
+    // A width the detector rejects keeps the map's class: the detector's width error still
+    // lets it see some of those doors, as the nearest class.
+    const std::optional<DoorClass> c = config_.sensed_door_class(e.metric_in);
+    Edge door = e;
+    if (c) door.door_class = *c;
+    return door;
+  }
+  return e;
+}
+
+bool HallwayView::WallLike(const Edge& e) const { return Sensed(e).IsWall(); }
 
 bool HallwayView::IsStep(int r, int e) const {
   const Ring& ring = original_.ring(r);

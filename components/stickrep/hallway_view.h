@@ -11,6 +11,8 @@
 // become the 90° or 270° turn the follower makes there. Positions in the view map back to
 // the map's own edges.
 
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "stickrep/map.h"
@@ -27,6 +29,11 @@ struct HallwayViewConfig {
   // A node bent further is a corner the follower turns at in place, left or right: it is
   // sensed as 90° (convex) or 270° (concave) whatever its angle, and the view says so.
   double max_bend_deg = 30.0;
+  // The class the robot's detector reports for a door of a given opening width, nullopt
+  // when it rejects the width. When set, every door is matched as that class (a door of
+  // measured width, map format 2, is what the robot will call it), or as wall. Empty: the
+  // map's classes as they are.
+  std::function<std::optional<DoorClass>(double width_in)> sensed_door_class;
 };
 
 class HallwayView {
@@ -62,6 +69,10 @@ class HallwayView {
  private:
   // Whether original edge `e` of ring `r` is a step.
   bool IsStep(int r, int e) const;
+  // An edge as the follower and the detector sense it: an opening as wall, a door as the
+  // class the detector reports for its width (or wall).
+  Edge Sensed(const Edge& e) const;
+  bool WallLike(const Edge& e) const;
 
   HallwayViewConfig config_;
   Map original_;

@@ -85,7 +85,7 @@ TEST(HallwayViewTest, PlacesMapBackToTheOriginalEdges) {
 
 TEST(HallwayViewTest, ZeroStepKeepsEveryEdgeAndJoinsSurvive) {
   const Map map = ParseMap(kPilasters, "pilasters.yaml");
-  const HallwayView none(map, HallwayViewConfig{0.0});
+  const HallwayView none(map, HallwayViewConfig{0.0, 30.0, {}});
   EXPECT_EQ(none.steps_removed(), 0);
   EXPECT_EQ(none.view().ring(0).EdgeCount(), map.ring(0).EdgeCount());
   // A map without steps is its own view, joins included.
@@ -178,7 +178,7 @@ TEST(HallwayViewTest, ShallowBendsAndOpeningsAreOneWallAndCornersAreTurns) {
   EXPECT_EQ(p.edge, 4);
   EXPECT_DOUBLE_EQ(p.offset_in, 10.0);
   // With bends kept, every chord is its own wall and the 150 deg corner a turn.
-  const HallwayView sharp(map, HallwayViewConfig{36.0, 5.0});
+  const HallwayView sharp(map, HallwayViewConfig{36.0, 5.0, {}});
   EXPECT_EQ(sharp.view().ring(0).EdgeCount(), 7);
   EXPECT_DOUBLE_EQ(sharp.view().ring(0).nodes[6].angle_deg, 90.0);
 }

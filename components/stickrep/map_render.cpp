@@ -73,6 +73,13 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
     return cv::Point(static_cast<int>(std::lround(margin + (x_in - min_x) * scale)),
                      static_cast<int>(std::lround(height - legend - margin - (y_in - min_y) * scale)));
   };
+  // Obstacles (columns, piers): filled grey.
+  for (const Obstacle& o : map.obstacles()) {
+    std::vector<cv::Point> corners;
+    for (const auto& c : o.polygon_in) corners.push_back(px_at(c[0], c[1]));
+    cv::fillPoly(img, std::vector<std::vector<cv::Point>>{corners}, cv::Scalar(150, 150, 150),
+                 cv::LINE_AA);
+  }
   for (const PathOverlay& path_overlay : options.paths) {
     for (size_t i = 1; i < path_overlay.points_in.size(); ++i) {
       const auto& a = path_overlay.points_in[i - 1];

@@ -10,6 +10,7 @@
 #include "common/units.h"
 #include "executive/executive.h"
 #include "landmark/landmark_pipeline.h"
+#include "localizer/sensed_doors.h"
 #include "localizer/localizer.h"
 #include "locomotion/drive.h"
 #include "locomotion/hallway_behaviour.h"
@@ -27,18 +28,6 @@ namespace {
 // 20 ft to align from its start, as the virtual robot process judges it.
 constexpr double kEnvelopeCornerDistanceIn = 96.0;
 constexpr double kEnvelopeSettleDistanceIn = 240.0;
-
-map::DoorClass ToMap(sensing::DoorClass c) {
-  switch (c) {
-    case sensing::DoorClass::kDoor30: return map::DoorClass::k30;
-    case sensing::DoorClass::kDoor32: return map::DoorClass::k32;
-    case sensing::DoorClass::kDoor36: return map::DoorClass::k36;
-    case sensing::DoorClass::kDoor40: return map::DoorClass::k40;
-    case sensing::DoorClass::kDouble30: return map::DoorClass::k30_30;
-    case sensing::DoorClass::kDouble36: return map::DoorClass::k36_36;
-  }
-  return map::DoorClass::k36;
-}
 
 StrictYaml Section(const std::string& file, const std::string& key) {
   return StrictYaml::LoadFile(file).Child(key);
@@ -213,7 +202,7 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
       if (out.kind == landmark::FrameOutcome::Kind::kObservation) {
         ++result.doors_observed;
         const sensing::LandmarkObservation& o = out.observation;
-        const localizer::DoorSighting sighting{ToMap(o.door_class), o.width_in, o.confidence,
+        const localizer::DoorSighting sighting{localizer::ToMapDoorClass(o.door_class), o.width_in, o.confidence,
                                                odometer.distance_in() + out.center_offset_in};
         localizer.AddSighting(sighting);
         assembler.AddSighting(sighting);
