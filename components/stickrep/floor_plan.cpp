@@ -184,6 +184,32 @@ void ReadCentreline(const StrictYaml& y, Corridor& c) {
   if (c.stretches.empty()) y.Fail("path", "a corridor needs at least one straight run or arc");
 }
 
+// The points of one feature set into a side wall running along `dir` (outward normal `o`)
+// from `start` to `end`: a door or an opening spans them; an alcove goes in by its depth,
+// along its back wall (doors set in it) and out again; a pier the same the other way.
+template <typename Push>
+void EmitFeature(const Feature& f, const Vec& start, const Vec& end, const Vec& dir,
+                 const Vec& o, double corridor_width_in, Push& push) {
+  if (f.kind == Kind::kDoor || f.kind == Kind::kOpening) {
+    push(start, f.kind, f.width_in);
+    push(end, Kind::kWall, 0.0);
+    return;
+  }
+  if (-f.depth_in >= corridor_width_in / 2.0) {
+    f.where.Fail("pier", "a pier " + FormatNumber(-f.depth_in) +
+                             " in deep reaches the corridor's centreline");
+  }
+  const Vec in = start + o * f.depth_in;
+  push(start, Kind::kWall, 0.0);
+  push(in, Kind::kWall, 0.0);
+  for (const AlcoveDoor& d : f.doors) {
+    push(in + dir * d.at_in, Kind::kDoor, d.width_in);
+    push(in + dir * (d.at_in + d.width_in), Kind::kWall, 0.0);
+  }
+  push(in + dir * f.width_in, Kind::kWall, 0.0);
+  push(end, Kind::kWall, 0.0);
+}
+
 // One side of the corridor in centreline order: `sign` +1 for the right side, -1 for the
 // left. Points lie half the width off the centreline, mitred at its vertices; features are
 // set in at their stations.
@@ -208,7 +234,7 @@ std::vector<SidePoint> BuildSide(const Corridor& c, int sign, const std::vector<
     vertex[i] = std::abs(denom) < 1e-9 ? pb : pa + a.dir * ((pb - pa).Cross(b.dir) / denom);
   }
   std::vector<SidePoint> out;
-  auto push = [&](Vec p, Kind next, double door = 0.0) {
+  auto push = [&](Vec p, Kind next, double door) {
     if (!out.empty() && (out.back().p - p).Norm() < 1e-6) {
       out.back().next = next;
       out.back().door_width_in = door;
@@ -226,7 +252,7 @@ std::vector<SidePoint> BuildSide(const Corridor& c, int sign, const std::vector<
   for (int j = 0; j < n; ++j) {
     const Stretch& s = c.stretches[j];
     const Vec o = normal(j);
-    push(vertex[j], Kind::kWall);
+    push(vertex[j], Kind::kWall, 0.0);
     // Where this stretch's wall starts and ends, as centreline stations abreast.
     const double wall_s0 = s.s0 + (vertex[j] - (s.a + o * h)).Dot(s.dir);
     const double wall_s1 = s.s0 + (vertex[j + 1] - (s.a + o * h)).Dot(s.dir);
@@ -244,33 +270,14 @@ std::vector<SidePoint> BuildSide(const Corridor& c, int sign, const std::vector<
                                   FormatNumber(wall_s0) + " to " + FormatNumber(wall_s1) + ")");
       }
       last_end = b;
-      if (f.kind == Kind::kDoor || f.kind == Kind::kOpening) {
-        push(abreast(a), f.kind, f.width_in);
-        push(abreast(b), Kind::kWall);
-        continue;
-      }
-      // An alcove: in by its depth, along its back wall (doors set in it), out again. A pier
-      // the same the other way.
-      if (-f.depth_in >= c.width_in / 2.0) {
-        f.where.Fail("pier", "a pier " + FormatNumber(-f.depth_in) +
-                                 " in deep reaches the corridor's centreline");
-      }
-      const Vec in = abreast(a) + o * f.depth_in;
-      push(abreast(a), Kind::kWall);
-      push(in, Kind::kWall);
-      for (const AlcoveDoor& d : f.doors) {
-        push(in + s.dir * d.at_in, Kind::kDoor, d.width_in);
-        push(in + s.dir * (d.at_in + d.width_in), Kind::kWall);
-      }
-      push(in + s.dir * f.width_in, Kind::kWall);
-      push(abreast(b), Kind::kWall);
+      EmitFeature(f, abreast(a), abreast(b), s.dir, o, c.width_in, push);
     }
   }
   if (next_feature < sorted.size()) {
     sorted[next_feature]->where.Fail("at_in", "lies beyond the corridor's end (station " +
                                                   FormatNumber(c.stretches.back().s1) + ")");
   }
-  push(vertex[n], Kind::kWall);
+  push(vertex[n], Kind::kWall, 0.0);
   return out;
 }
 

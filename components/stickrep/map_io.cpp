@@ -247,6 +247,36 @@ Ring ReadRing(const StrictYaml& y, int version, std::vector<int>* node_lines) {
   return ring;
 }
 
+// The version 2 `obstacles:` list, if any.
+std::vector<Obstacle> ReadObstacles(const StrictYaml& root, int version) {
+  std::vector<Obstacle> obstacles;
+  if (!root.Has("obstacles")) return obstacles;
+  if (version < 2) root.Fail("obstacles", "needs map format 2 (stickrep_map: 2)");
+  std::set<std::string> ids;
+  for (const StrictYaml& oy : root.Sequence("obstacles")) {
+    Obstacle o;
+    o.id = oy.Get<std::string>("id");
+    if (!IsIdentifier(o.id)) oy.Fail("id", "an obstacle id is one word (letters, digits, _-.)");
+    if (!ids.insert(o.id).second) oy.Fail("id", "obstacle id '" + o.id + "' is used twice");
+    const std::vector<StrictYaml> corners = oy.Sequence("polygon_in");
+    if (corners.size() < 3) oy.Fail("polygon_in", "a polygon needs at least 3 corners");
+    for (const StrictYaml& c : corners) {
+      const std::vector<StrictYaml> xy = c.Elements();
+      if (xy.size() != 2) {
+        throw InputError(c.file(), c.line(), c.path(), "a corner is [x, y] in inches");
+      }
+      const double x = xy[0].As<double>(), y = xy[1].As<double>();
+      if (std::abs(x) > 1e7 || std::abs(y) > 1e7) {
+        throw InputError(c.file(), c.line(), c.path(), "coordinate out of range (|value| > 1e7)");
+      }
+      o.polygon_in.push_back({x, y});
+    }
+    oy.Finish();
+    obstacles.push_back(std::move(o));
+  }
+  return obstacles;
+}
+
 }  // namespace
 
 Map ParseMap(const std::string& text, const std::string& name) {
@@ -309,32 +339,7 @@ Map ParseMap(const std::string& text, const std::string& name) {
   } else {
     root.GetOr<std::string>("joins", "");
   }
-  std::vector<Obstacle> obstacles;
-  if (root.Has("obstacles")) {
-    if (version < 2) root.Fail("obstacles", "needs map format 2 (stickrep_map: 2)");
-    std::set<std::string> ids;
-    for (const StrictYaml& oy : root.Sequence("obstacles")) {
-      Obstacle o;
-      o.id = oy.Get<std::string>("id");
-      if (!IsIdentifier(o.id)) oy.Fail("id", "an obstacle id is one word (letters, digits, _-.)");
-      if (!ids.insert(o.id).second) oy.Fail("id", "obstacle id '" + o.id + "' is used twice");
-      const std::vector<StrictYaml> corners = oy.Sequence("polygon_in");
-      if (corners.size() < 3) oy.Fail("polygon_in", "a polygon needs at least 3 corners");
-      for (const StrictYaml& c : corners) {
-        const std::vector<StrictYaml> xy = c.Elements();
-        if (xy.size() != 2) {
-          throw InputError(c.file(), c.line(), c.path(), "a corner is [x, y] in inches");
-        }
-        const double x = xy[0].As<double>(), y = xy[1].As<double>();
-        if (std::abs(x) > 1e7 || std::abs(y) > 1e7) {
-          throw InputError(c.file(), c.line(), c.path(), "coordinate out of range (|value| > 1e7)");
-        }
-        o.polygon_in.push_back({x, y});
-      }
-      oy.Finish();
-      obstacles.push_back(std::move(o));
-    }
-  }
+  std::vector<Obstacle> obstacles = ReadObstacles(root, version);
   root.Finish();
   try {
     return Map(std::move(info), std::move(rings), std::move(joins), std::move(obstacles));
