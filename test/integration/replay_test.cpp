@@ -71,12 +71,19 @@ class ReplayTest : public ProcessFixture {
     return started;
   }
 
-  // The sequence the localizer logged when it declared the pose.
-  static std::string SensedSequence(launch::ChildProcess& localizer) {
-    localizer.ReadLines(true);
+  // The sequence the localizer logged when it declared the pose. The log line follows the
+  // published pose, so it may arrive a moment after the pose does: waited for, bounded.
+  std::string SensedSequence(launch::ChildProcess& localizer) {
+    static const std::regex sensed("info sensed: ([^\n]*)\n");
     std::smatch m;
-    const std::string& out = localizer.output();
-    static const std::regex sensed("info sensed: ([^\n]*)");
+    SpinUntil(
+        [&] {
+          localizer.ReadLines(false);
+          return std::regex_search(localizer.output(), m, sensed);
+        },
+        10.0);
+    localizer.ReadLines(true);
+    const std::string out = localizer.output();
     return std::regex_search(out, m, sensed) ? m[1].str() : "";
   }
 
