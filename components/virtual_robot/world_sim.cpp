@@ -303,10 +303,14 @@ SimTruth WorldSim::Truth() const {
       nearest = j;
     }
   }
+  // The travel direction is judged on a stretch of the side the camera watches: a corridor
+  // outline's other side runs along the same line the other way round, and judged on it
+  // the direction would come out reversed.
   double best_alignment = -1.0;
   for (int j = 0; j < segments; ++j) {
     const double along = last_motion_.dot(Unit(axis_[j].a_in, axis_[j].b_in));
-    if (distance[j] < distance[nearest] + 1.0 && std::abs(along) > best_alignment) {
+    if (distance[j] < distance[nearest] + 1.0 && facing_along(j) > -0.5 &&
+        std::abs(along) > best_alignment) {
       best_alignment = std::abs(along);
       t.forward_in_ring = along > 0.0;
     }

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "stickrep/floor_plan.h"
+
 namespace stickrep::virtual_robot {
 namespace {
 
@@ -94,6 +96,40 @@ TEST(WorldSimTest, TeleportMovesTheRobotButNotTheEncoders) {
   sim.Teleport(900.0);
   EXPECT_EQ(sim.Truth().edge_index, 4);
   EXPECT_EQ(sim.left_travel_in(), travel);
+}
+
+// A corridor outline's axis runs down the corridor and back on the same line, one stretch
+// per side. The travel direction must be judged on the side the camera watches, so that it
+// agrees with the ring order of the edges the camera sees, driving forward or backward.
+TEST(WorldSimTest, CorridorOutlineTravelDirectionFollowsTheWatchedSideBothWays) {
+  const map::Map corridor = map::ParseFloorPlan(R"(stickrep_floor: 1
+name: straight
+corridors:
+  - id: c
+    width_in: 96
+    start: {xy_in: [0, 0], heading_deg: 0}
+    path:
+      - straight_in: 700
+    ends: {start: wall, end: wall}
+    right:
+      - {at_in: 200, door_in: 36}
+    left:
+      - {at_in: 400, door_in: 36}
+)", "straight.floor.yaml");
+  WorldSimConfig c = Exact();
+  c.ring_id = "c";
+  // Starts on one side of the corridor and on the other.
+  for (const double start_in : {150.0, 450.0, 900.0, 1200.0}) {
+    WorldSim sim(corridor, sensing::RobotConfig{}, c, start_in, 1);
+    for (const double speed : {1.0, -1.0, 1.0}) {
+      const SimTruth before = sim.Truth();
+      sim.Step(0.5, speed, speed);  // 6 in
+      const SimTruth after = sim.Truth();
+      ASSERT_EQ(after.edge_index, before.edge_index) << "start " << start_in;
+      const bool up_the_ring = after.offset_in > before.offset_in;
+      EXPECT_EQ(after.forward_in_ring, up_the_ring) << "start " << start_in << ", speed " << speed;
+    }
+  }
 }
 
 TEST(WorldSimTest, UnknownRingIsRejected) {

@@ -167,7 +167,9 @@ std::vector<OffsetSegment> OffsetRuns(const std::vector<WallRun>& all_runs, bool
   std::vector<OffsetSegment> segments;
   for (int guard = 0; guard < 10000; ++guard) {
     const int m = static_cast<int>(runs.size());
-    if (m == 0 || (closed && m < 3)) return {};
+    // Two runs left of a closed ring: the two sides of a straight corridor outline, whose
+    // offset lines meet on its axis (antiparallel: the mitres are the runs' own ends).
+    if (m == 0 || (closed && m < 2)) return {};
     segments.clear();
     int collapsed = -1;
     for (int j = 0; j < m; ++j) {
