@@ -119,7 +119,14 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
     }
     if (r >= side_range - c.side_echo_margin_in) continue;
     wide.push_back({bearing, r});
-    if (off > DegToRad(c.front_half_angle_deg) + 1e-9) continue;
+    if (off > DegToRad(c.front_half_angle_deg) + 1e-9) {
+      // A flank sensor hears a smooth surface only when the surface faces it (its normal
+      // within the cone): a plane that faces it crosses the travel line at most
+      // R / cos(off - half cone) ahead. An oblique wall ahead the front sensors do not
+      // hear (it meets them too steeply) still stops the base.
+      free_in = std::min(free_in, (c.head_radius_in + r) / std::cos(std::max(0.0, off - half_cone)));
+      continue;
+    }
     front.push_back({bearing, r});
     // The echo may come from anywhere in the cone; the direction nearest the travel axis
     // gives the most cautious along-travel distance.
@@ -132,23 +139,35 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
   // oblique wall the gate often leaves one of them: the others meet it too steeply).
   if (std::isfinite(wall_in) || front.empty()) return;
   // Not across: a wall at another angle (the hallway turns by less than a right angle), its
-  // normal searched outward from the axis; the smallest angle three sensors agree on.
+  // normal searched outward from the axis. A reading fits every plane whose normal lies in
+  // its cone, so the sensors agree over a run of angles around the true one: the run found
+  // first (the smallest angle three sensors agree on, one of them a front sensor) is taken
+  // and its middle is the wall's angle.
   const double step = DegToRad(2.5);
-  for (double psi = DegToRad(c.min_oblique_wall_deg); psi <= DegToRad(c.max_oblique_wall_deg) + 1e-9;
-       psi += step) {
-    for (double signed_psi : {psi, -psi}) {
-      const double d = AgreedWallDistance(wide, axis_rad + signed_psi, 3, c);
-      if (!std::isfinite(d)) continue;
-      // It stands ahead: a front sensor reads it (not only the flanks, which also meet a
-      // side wall the fit leaves unexplained).
-      const bool ahead = std::any_of(front.begin(), front.end(), [&](const Reading& r) {
-        return std::abs(ImpliedDistanceIn(r, axis_rad + signed_psi, c) - d) <=
-               c.wall_ahead_spread_in;
-      });
-      if (!ahead) continue;
+  const auto agreed_ahead = [&](double signed_psi) {
+    const double d = AgreedWallDistance(wide, axis_rad + signed_psi, 3, c);
+    if (!std::isfinite(d)) return kNoObstacle;
+    // It stands ahead: a front sensor reads it (not only the flanks, which also meet a side
+    // wall the fit leaves unexplained).
+    const bool ahead = std::any_of(front.begin(), front.end(), [&](const Reading& r) {
+      return std::abs(ImpliedDistanceIn(r, axis_rad + signed_psi, c) - d) <= c.wall_ahead_spread_in;
+    });
+    return ahead ? d : kNoObstacle;
+  };
+  const double max_psi = DegToRad(c.max_oblique_wall_deg) + 1e-9;
+  for (double psi = DegToRad(c.min_oblique_wall_deg); psi <= max_psi; psi += step) {
+    for (const double sign : {+1.0, -1.0}) {
+      if (!std::isfinite(agreed_ahead(sign * psi))) continue;
+      double last = psi;
+      while (last + step <= max_psi && std::isfinite(agreed_ahead(sign * (last + step)))) {
+        last += step;
+      }
+      const double mid = sign * 0.5 * (psi + last);
+      double d = agreed_ahead(mid);
+      if (!std::isfinite(d)) d = agreed_ahead(sign * psi);
       // Along the travel direction, the plane at perpendicular distance d lies d / cos.
-      wall_in = d / std::cos(std::abs(WrapPi(axis_rad + signed_psi - travel_rad)));
-      wall_normal_rad = signed_psi;
+      wall_in = d / std::cos(std::abs(WrapPi(axis_rad + mid - travel_rad)));
+      wall_normal_rad = mid;
       return;
     }
   }

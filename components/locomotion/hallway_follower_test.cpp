@@ -125,6 +125,35 @@ TEST(HallwayFollowerTest, LeftCornerRequestsACounterClockwiseTurn) {
   EXPECT_EQ(DetectTurn(EstimateHallway(Scan(walls, -200, 0, 0), {}), +1, {}).kind, TurnKind::kNone);
 }
 
+// A 96 in hallway along +x that bends left by `bend` at x = 0: the outer (right) wall turns
+// there, the inner wall 96 tan(bend / 2) earlier.
+std::vector<Segment> BendLeft(double bend) {
+  const double w = 96.0;
+  const double dx = std::cos(bend) * 1000.0, dy = std::sin(bend) * 1000.0;
+  const double inner_x = -w * std::tan(bend / 2.0);
+  return {{{-1000, -w / 2}, {0, -w / 2}},
+          {{0, -w / 2}, {dx, -w / 2 + dy}},
+          {{-1000, w / 2}, {inner_x, w / 2}},
+          {{inner_x, w / 2}, {inner_x + dx, w / 2 + dy}}};
+}
+
+TEST(HallwayFollowerTest, ObliqueWallAheadIsMeasuredAtItsOwnAngle) {
+  // A reading fits every plane whose normal lies in its 23.6 deg cone: the angle is the
+  // middle of the angles the sensors agree on, not the first of them.
+  for (const double bend_deg : {30.0, 45.0, 60.0}) {
+    const std::vector<Segment> walls = BendLeft(DegToRad(bend_deg));
+    int seen = 0;
+    for (double x = -80.0; x <= -10.0; x += 10.0) {
+      const HallwayEstimate e = EstimateHallway(Scan(walls, x, 0, 0), {});
+      if (!std::isfinite(e.wall_forward_in) || e.wall_forward_normal_rad == 0.0) continue;
+      ++seen;
+      EXPECT_NEAR(RadToDeg(e.wall_forward_normal_rad), -(90.0 - bend_deg), 6.0)
+          << "bend " << bend_deg << " deg, base at x = " << x;
+    }
+    EXPECT_GE(seen, 2) << "bend " << bend_deg << " deg";
+  }
+}
+
 TEST(HallwayFollowerTest, CornerTravellingBackwardTurnsTheOtherWay) {
   HallwayEstimate e;
   e.wall_backward_in = 50.0;
