@@ -45,6 +45,14 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
       estimate_.message = "travel reversed: the pose is kept, travelling the other way";
       return true;
     }
+    if (bayes_ && bayes_->edges() > 0) {
+      // Recovering with the filter: its belief is carried over to the way back (a hallway
+      // end no longer throws the edges sensed so far away).
+      bayes_->Reverse();
+      assembler_.Restart();
+      Rebuild(odometer_in, "travel reversed: the evidence is kept, travelling the other way");
+      return true;
+    }
     // Recovering: the sequence so far was sensed the other way round; start a new one.
     ResetRecovery();
     restarts_++;

@@ -41,6 +41,33 @@ void BayesLocalizer::Reset() {
   best_ = PoseBelief{};
   edges_ = 0;
   above_ = 0;
+  skip_partial_ = false;
+}
+
+void BayesLocalizer::Reverse() {
+  if (states_ == 0 || edges_ == 0) return;
+  std::fill(nn_.begin(), nn_.end(), 0.0);
+  for (int g = 0; g < index_.EdgeCount(); ++g) {
+    for (const int dir : {+1, -1}) {
+      const int s = State(g, dir);
+      // At the far end of g: the robot is inside the next edge and will leave it at its
+      // far end going back. (At the end of an open ring there is no next edge: dropped.)
+      const int next = index_.Step(g, dir);
+      if (next >= 0) nn_[State(next, -dir)] += n_[s];
+      // Inside wall g around a false door: going back it leaves g at g's start.
+      nn_[State(g, -dir)] += i1_[s] + i2_[s];
+    }
+  }
+  n_.swap(nn_);
+  std::fill(i1_.begin(), i1_.end(), 0.0);
+  std::fill(i2_.begin(), i2_.end(), 0.0);
+  skip_partial_ = true;
+  // Moving the belief is no new evidence: the confirmation count stays as it was.
+  const int above = above_;
+  const RecoveryStatus status = status_;
+  Normalise();
+  above_ = above;
+  status_ = status;
 }
 
 double BayesLocalizer::WallDensity(double measured, double true_len) const {
@@ -62,6 +89,10 @@ RecoveryStatus BayesLocalizer::Add(const map::SensedEdge& edge) {
     return status_;
   }
   if (states_ == 0) return status_;
+  if (skip_partial_) {
+    skip_partial_ = false;
+    if (edge.metric_is_lower_bound) return status_;
+  }
   if (edges_ == 0) {
     First(edge);
   } else {

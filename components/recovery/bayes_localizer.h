@@ -56,6 +56,13 @@ class BayesLocalizer {
   // kFailed: an unexplained edge costs probability, it does not end the attempt).
   RecoveryStatus Add(const map::SensedEdge& edge);
   void Reset();
+  // The robot reversed its travel (a hallway end, a goal behind) inside the edge after the
+  // last sensed one: the belief is carried over instead of being thrown away. A place
+  // (g, dir) becomes (next edge, -dir): travelling back, the robot re-enters the part of
+  // the next edge it has seen and reaches that edge's far end in the new direction. The
+  // first sensed edge after the reversal, when it is a partial wall (that part seen
+  // again, metric_is_lower_bound), is consumed without weighing it.
+  void Reverse();
 
   RecoveryStatus status() const { return status_; }
   // The most probable (edge, direction) and its posterior.
@@ -87,6 +94,7 @@ class BayesLocalizer {
   RecoveryStatus status_ = RecoveryStatus::kEmpty;
   PoseBelief best_;
   int above_ = 0;  // consecutive edges the best place held the threshold
+  bool skip_partial_ = false;  // after Reverse(): the re-seen partial edge is not evidence
   int edges_ = 0;
   std::uint64_t rejected_ = 0;
 };

@@ -49,6 +49,30 @@ TEST_F(BayesLocalizerTest, ExactSequenceEndsAtTheTruth) {
   EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
 }
 
+TEST_F(BayesLocalizerTest, ReversalCarriesTheBeliefToTheWayBack) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Wall(150, kNaN, true));
+  b.Add(Door(DoorClass::k40));
+  b.Add(Wall(90));
+  b.Add(Door(DoorClass::k36));
+  b.Add(Wall(75));
+  ASSERT_EQ(b.best().edge, 10);
+  // The robot turns back inside edge 11: the place becomes (11, backward), and the part
+  // of edge 11 it sees again is not weighed.
+  b.Reverse();
+  EXPECT_EQ(b.best().edge, 11);
+  EXPECT_EQ(b.best().dir, -1);
+  EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
+  b.Add(Wall(30, kNaN, true));
+  EXPECT_EQ(b.edges(), 5);
+  b.Add(Wall(75));
+  b.Add(Door(DoorClass::k36));
+  EXPECT_EQ(b.edges(), 7);
+  EXPECT_EQ(b.best().edge, 9);
+  EXPECT_EQ(b.best().dir, -1);
+  EXPECT_GT(b.best().probability, 0.99);
+}
+
 TEST_F(BayesLocalizerTest, ConfirmationWaitsForTheThresholdToHoldOverMoreEdges) {
   BayesLocalizer now = Make(ErrorModel::Paper());
   BayesLocalizer later = Make(ErrorModel::Paper(), 0.99, 1);
