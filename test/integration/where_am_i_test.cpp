@@ -29,7 +29,11 @@ class WhereAmITest : public ProcessFixture {
   explicit WhereAmITest(int domain = 25) : ProcessFixture(domain) {}
 
   void StartStack(const std::string& name, const std::map<std::string, std::string>& robot) {
-    const std::string system = SmallMapSystem(name + "_system.yaml");
+    StartStackOn(SmallMapSystem(name + "_system.yaml"), name, robot);
+  }
+
+  void StartStackOn(const std::string& system, const std::string& name,
+                    const std::map<std::string, std::string>& robot) {
     std::map<std::string, std::string> keys = {{"real_time_factor", kRealTimeFactor},
                                                {"summary_png", "\"\""}};
     keys.insert(robot.begin(), robot.end());
@@ -45,11 +49,11 @@ class WhereAmITest : public ProcessFixture {
   // Whether a localized pose names the true place: same ring and direction of travel, the
   // true edge or its neighbour (the robot may be crossing a node as the pose is published).
   static bool Matches(const msgs::PoseHypothesis& best, const msgs::GroundTruth& truth,
-                      bool truth_forward) {
+                      bool truth_forward, int ring_edges = kSmallMapEdges) {
     const int de =
         std::abs(static_cast<int>(best.edge_index()) - static_cast<int>(truth.edge_index()));
     return best.ring_id() == truth.ring_id() && best.forward() == truth_forward &&
-           (de <= 1 || de == kSmallMapEdges - 1);
+           (de <= 1 || de == ring_edges - 1);
   }
 };
 
@@ -144,6 +148,48 @@ TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
       << ", truth ring " << truth_at_second->ring_id() << " edge " << truth_at_second->edge_index()
       << "\n"
       << Outputs();
+  StopAllAndExpectCleanExit();
+}
+
+// A floor the generators did not make: the main corridor of maps/teaching_building_1f.yaml
+// (a corridor outline 96 in wide with door alcoves, a lobby with two columns, a curved
+// stretch and a 45 deg bend; maps/README.md, "Realistic floors"), every process on its own.
+class RealBuildingTest : public WhereAmITest {
+ protected:
+  RealBuildingTest() : WhereAmITest(29) {}
+};
+
+TEST_F(RealBuildingTest, TeachingBuildingStartRecoversTheTruePose) {
+  // The main corridor's ring has 98 edges (maps/teaching_building_1f.yaml).
+  constexpr int kRingEdges = 98;
+  std::optional<msgs::GroundTruth> truth;
+  std::optional<msgs::LocalizationPose> localized;
+  std::optional<msgs::GroundTruth> at_pose;
+  runtime::Reader<msgs::GroundTruthPubSubType> truths(
+      participant(), executor(), "sim/ground_truth",
+      [&](const msgs::GroundTruth& g) { truth = g; });
+  runtime::Reader<msgs::LocalizationPosePubSubType> poses(
+      participant(), executor(), "localization/pose", [&](const msgs::LocalizationPose& p) {
+        if (p.status() == msgs::LOCALIZATION_LOCALIZED && !localized) {
+          localized = p;
+          at_pose = truth;
+        }
+      });
+  const std::string system = WriteTempFile(
+      "teaching_system.yaml",
+      ConfigWith("system.yaml", {{"qos_file", ConfigPath("qos.yaml")},
+                                 {"robot_file", ConfigPath("robot.yaml")},
+                                 {"map_file", STICKREP_SOURCE_DIR "/maps/teaching_building_1f.yaml"}}));
+  StartStackOn(system, "teaching", {{"seed", "32"}, {"ring_id", "main_corridor"}});
+  ASSERT_TRUE(SpinUntil([&] { return localized.has_value() && at_pose.has_value(); }, 240.0))
+      << Outputs();
+  EXPECT_TRUE(Matches(localized->best(), *at_pose, at_pose->forward_in_ring(), kRingEdges))
+      << "localized on ring " << localized->best().ring_id() << " edge "
+      << localized->best().edge_index() << (localized->best().forward() ? " fwd" : " back")
+      << ", truth ring " << at_pose->ring_id() << " edge " << at_pose->edge_index()
+      << (at_pose->forward_in_ring() ? " fwd" : " back") << "\n"
+      << Outputs();
+  EXPECT_EQ(at_pose->collisions(), 0u);
   StopAllAndExpectCleanExit();
 }
 
