@@ -415,12 +415,19 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
       const bool accepted =
           estimate_.offset_valid && tracker_.UpdateOffset(estimate_.lateral_offset_in);
       if (accepted && estimate_.heading_valid) tracker_.UpdateHeading(estimate_.heading_error_rad);
-    } else if (estimate_.left_open != estimate_.right_open && hallway_width_in_ > 0.0) {
+    } else if (estimate_.left_open != estimate_.right_open) {
+      // Before any width was measured (a start beside an open hall) the default width
+      // places the base: a guess, but one that keeps it off the wall it can see.
       const WallLine& plain = estimate_.left_open ? estimate_.right : estimate_.left;
       if (plain.valid && plain.inliers >= 2) {
-        const double half = hallway_width_in_ / 2.0;
-        tracker_.UpdateOffset(estimate_.left_open ? plain.distance_in - half
-                                                  : half - plain.distance_in);
+        const double half = (hallway_width_in_ > 0.0 ? hallway_width_in_ : width_in) / 2.0;
+        const bool accepted = tracker_.UpdateOffset(estimate_.left_open ? plain.distance_in - half
+                                                                        : half - plain.distance_in);
+        // With no heading yet, the one wall's is the best there is; otherwise odometry
+        // carries it (stray echoes from round a corner bias a one-sided fit).
+        if (accepted && !tracker_.heading_known() && estimate_.heading_valid) {
+          tracker_.UpdateHeading(estimate_.heading_error_rad);
+        }
       }
     }
   }

@@ -207,6 +207,28 @@ TEST(HallwayBehaviourTest, TurnsAtCornersThatAreNotSquareByWhatTheHallwayTurns) 
   }
 }
 
+TEST(HallwayBehaviourTest, StartBesideAnOpenHallFollowsTheOtherWall) {
+  // A 96 in corridor whose camera side opens into a hall 30 ft deep from x = -600 to
+  // x = 0; the base starts in front of the hall, 13 in right of the axis and turned 10 deg
+  // toward the far wall, before any width has been measured.
+  Drive r({{{-2000, 48}, {-600, 48}}, {{-600, 48}, {-600, 408}}, {{-600, 408}, {0, 408}},
+           {{0, 408}, {0, 48}}, {{0, 48}, {2000, 48}}, {{-2000, -48}, {2000, -48}}});
+  r.x = -500.0;
+  r.y = -13.0;
+  r.psi = DegToRad(-10.0);
+  double closest = 1e9;
+  ASSERT_TRUE(r.Until(
+      [&] {
+        closest = std::min(closest, Clearance(r.walls, r.x, r.y));
+        return r.x > 300.0;
+      },
+      60.0))
+      << r.out.reason;
+  EXPECT_GT(closest, 20.0);
+  EXPECT_EQ(r.obstacle_stops, 0);
+  EXPECT_NEAR(r.psi, 0.0, DegToRad(5.0));
+}
+
 TEST(HallwayBehaviourTest, AtAJunctionTurnsTowardTheCameraSide) {
   // A T: the hallway ends against a crossing hallway between x = -60 and x = 60.
   Drive r({{{-2000, 60}, {-60, 60}}, {{-60, 60}, {-60, 2000}},

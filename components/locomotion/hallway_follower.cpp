@@ -104,9 +104,19 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
   const double half_cone = DegToRad(c.cone_deg) / 2.0;
   std::vector<Reading> front, wide;  // unexplained echoes ahead, and within the oblique fan
   for (int k = 0; k < c.sensor_count; ++k) {
-    if (!scan[k].valid) continue;
     const double bearing = SensorBearingRad(k, c);
     const double off = std::abs(WrapPi(bearing - travel_rad));
+    if (!scan[k].valid) {
+      // An echo the gate set aside as outside the accurate footprint is rough, but
+      // something stands there: in the front fan it bounds the free space all the same (a
+      // corner met at a slant returns only such echoes).
+      if (scan[k].outside_footprint && off <= DegToRad(c.front_half_angle_deg) + 1e-9 &&
+          std::isfinite(scan[k].range_in) && scan[k].range_in > 0.0) {
+        free_in = std::min(free_in, (c.head_radius_in + scan[k].range_in) *
+                                        std::cos(std::max(0.0, off - half_cone)));
+      }
+      continue;
+    }
     if (off > DegToRad(std::max(c.front_half_angle_deg, c.oblique_half_angle_deg)) + 1e-9) {
       continue;
     }
@@ -131,6 +141,17 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
     // The echo may come from anywhere in the cone; the direction nearest the travel axis
     // gives the most cautious along-travel distance.
     free_in = std::min(free_in, (c.head_radius_in + r) * std::cos(std::max(0.0, off - half_cone)));
+  }
+  // A side wall the base is heading into (its normal more than 10 deg into the travel
+  // direction: far beyond what steering allows) stands in the way where the travel line
+  // meets it, less the base's radius. Its echoes are explained by the wall's fit above, so
+  // they would not stop the base otherwise.
+  for (const WallLine* w : {&walls.left, &walls.right}) {
+    if (!w->valid) continue;
+    const double towards = std::cos(WrapPi(w->normal_rad - travel_rad));
+    if (towards > std::sin(DegToRad(10.0))) {
+      free_in = std::min(free_in, std::max(0.0, w->distance_in - c.head_radius_in) / towards);
+    }
   }
   // A wall across the hallway has its normal along the hallway axis.
   const double axis_rad = travel_rad - heading_error_rad;

@@ -154,6 +154,20 @@ TEST(HallwayFollowerTest, ObliqueWallAheadIsMeasuredAtItsOwnAngle) {
   }
 }
 
+TEST(HallwayFollowerTest, SideWallHeadedIntoAtASteepAngleBoundsTheFreeSpace) {
+  const std::vector<Segment> walls = Hallway(48.0);  // 96 in wide
+  // 18 in from the right wall, heading 25 deg into it: the travel line meets it (less the
+  // base's radius) about 25 in ahead, though every echo from it fits the side wall and no
+  // front sensor hears it.
+  const HallwayEstimate into = EstimateHallway(Scan(walls, 0, -30, DegToRad(-25.0)), {});
+  ASSERT_TRUE(into.right.valid);
+  EXPECT_LT(into.free_forward_in, 40.0);
+  // Parallel to it, or within the steering's few degrees, the way is clear.
+  EXPECT_TRUE(std::isinf(EstimateHallway(Scan(walls, 0, -30, 0.0), {}).free_forward_in));
+  EXPECT_TRUE(std::isinf(
+      EstimateHallway(Scan(walls, 0, -30, DegToRad(-5.0)), {}).free_forward_in));
+}
+
 TEST(HallwayFollowerTest, CornerTravellingBackwardTurnsTheOtherWay) {
   HallwayEstimate e;
   e.wall_backward_in = 50.0;
