@@ -95,57 +95,20 @@ double AgreedWallDistance(const std::vector<Reading>& readings, double normal_ra
   return *hi - *lo <= c.wall_ahead_spread_in ? Median(implied) : kNoObstacle;
 }
 
-void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double heading_error_rad,
-               const HallwayEstimate& walls, const HallwayFollowerConfig& c, double& free_in,
-               double& wall_in, double& wall_normal_rad) {
-  free_in = kNoObstacle;
-  wall_in = kNoObstacle;
-  wall_normal_rad = 0.0;
-  const double half_cone = DegToRad(c.cone_deg) / 2.0;
-  std::vector<Reading> front, wide;  // unexplained echoes ahead, and within the oblique fan
-  for (int k = 0; k < c.sensor_count; ++k) {
-    const double bearing = SensorBearingRad(k, c);
-    const double off = std::abs(WrapPi(bearing - travel_rad));
-    if (!scan[k].valid) {
-      // An echo the gate set aside as outside the accurate footprint is rough, but
-      // something stands there: in the front fan it bounds the free space all the same (a
-      // corner met at a slant returns only such echoes).
-      if (scan[k].outside_footprint && off <= DegToRad(c.front_half_angle_deg) + 1e-9 &&
-          std::isfinite(scan[k].range_in) && scan[k].range_in > 0.0) {
-        free_in = std::min(free_in, (c.head_radius_in + scan[k].range_in) *
-                                        std::cos(std::max(0.0, off - half_cone)));
-      }
-      continue;
-    }
-    if (off > DegToRad(std::max(c.front_half_angle_deg, c.oblique_half_angle_deg)) + 1e-9) {
-      continue;
-    }
-    const double r = scan[k].range_in;
-    double side_range = kNoObstacle;
-    for (const WallLine* w : {&walls.left, &walls.right}) {
-      if (!w->valid) continue;
-      side_range =
-          std::min(side_range, PredictedWallRangeIn(bearing, w->normal_rad, w->distance_in, c));
-    }
-    if (r >= side_range - c.side_echo_margin_in) continue;
-    wide.push_back({bearing, r});
-    if (off > DegToRad(c.front_half_angle_deg) + 1e-9) {
-      // A flank sensor hears a smooth surface only when the surface faces it (its normal
-      // within the cone): a plane that faces it crosses the travel line at most
-      // R / cos(off - half cone) ahead. An oblique wall ahead the front sensors do not
-      // hear (it meets them too steeply) still stops the base.
-      free_in = std::min(free_in, (c.head_radius_in + r) / std::cos(std::max(0.0, off - half_cone)));
-      continue;
-    }
-    front.push_back({bearing, r});
-    // The echo may come from anywhere in the cone; the direction nearest the travel axis
-    // gives the most cautious along-travel distance.
-    free_in = std::min(free_in, (c.head_radius_in + r) * std::cos(std::max(0.0, off - half_cone)));
-  }
-  // A side wall the base is heading into (its normal more than 10 deg into the travel
-  // direction: far beyond what steering allows) stands in the way where the travel line
-  // meets it, less the base's radius. Its echoes are explained by the wall's fit above, so
-  // they would not stop the base otherwise.
+// What lies ahead in one travel direction.
+struct Ahead {
+  double free_in = kNoObstacle;
+  double wall_in = kNoObstacle;
+  double wall_normal_rad = 0.0;
+};
+
+// A side wall the base is heading into (its normal more than 10 deg into the travel
+// direction: far beyond what steering allows) stands in the way where the travel line meets
+// it, less the base's radius. Its echoes are explained by the wall's fit, so they would not
+// stop the base otherwise.
+double SideWallsHeadedIntoIn(const HallwayEstimate& walls, double travel_rad,
+                             const HallwayFollowerConfig& c) {
+  double free_in = kNoObstacle;
   for (const WallLine* w : {&walls.left, &walls.right}) {
     if (!w->valid) continue;
     const double towards = std::cos(WrapPi(w->normal_rad - travel_rad));
@@ -153,27 +116,27 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
       free_in = std::min(free_in, std::max(0.0, w->distance_in - c.head_radius_in) / towards);
     }
   }
-  // A wall across the hallway has its normal along the hallway axis.
-  const double axis_rad = travel_rad - heading_error_rad;
-  wall_in = AgreedWallDistance(front, axis_rad, 2, c);
-  // Only when the front sensors see something that is not across the hallway (at an
-  // oblique wall the gate often leaves one of them: the others meet it too steeply).
-  if (std::isfinite(wall_in) || front.empty()) return;
-  // Not across: a wall at another angle (the hallway turns by less than a right angle), its
-  // normal searched outward from the axis. A reading fits every plane whose normal lies in
-  // its cone, so the sensors agree over a run of angles around the true one: the run found
-  // first (the smallest angle three sensors agree on, one of them a front sensor) is taken
-  // and its middle is the wall's angle.
+  return free_in;
+}
+
+// A wall at another angle than across (the hallway turns by less than a right angle), its
+// normal searched outward from the axis. A reading fits every plane whose normal lies in its
+// cone, so the sensors agree over a run of angles around the true one: the run found first
+// (the smallest angle three sensors agree on, one of them a front sensor) is taken and its
+// middle is the wall's angle. False when there is none.
+bool ObliqueWallAhead(const std::vector<Reading>& front, const std::vector<Reading>& wide,
+                      double axis_rad, double travel_rad, const HallwayFollowerConfig& c,
+                      Ahead& ahead) {
   const double step = DegToRad(2.5);
   const auto agreed_ahead = [&](double signed_psi) {
     const double d = AgreedWallDistance(wide, axis_rad + signed_psi, 3, c);
     if (!std::isfinite(d)) return kNoObstacle;
     // It stands ahead: a front sensor reads it (not only the flanks, which also meet a side
     // wall the fit leaves unexplained).
-    const bool ahead = std::any_of(front.begin(), front.end(), [&](const Reading& r) {
+    const bool seen_ahead = std::any_of(front.begin(), front.end(), [&](const Reading& r) {
       return std::abs(ImpliedDistanceIn(r, axis_rad + signed_psi, c) - d) <= c.wall_ahead_spread_in;
     });
-    return ahead ? d : kNoObstacle;
+    return seen_ahead ? d : kNoObstacle;
   };
   const double max_psi = DegToRad(c.max_oblique_wall_deg) + 1e-9;
   for (double psi = DegToRad(c.min_oblique_wall_deg); psi <= max_psi; psi += step) {
@@ -187,11 +150,70 @@ void LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double he
       double d = agreed_ahead(mid);
       if (!std::isfinite(d)) d = agreed_ahead(sign * psi);
       // Along the travel direction, the plane at perpendicular distance d lies d / cos.
-      wall_in = d / std::cos(std::abs(WrapPi(axis_rad + mid - travel_rad)));
-      wall_normal_rad = mid;
-      return;
+      ahead.wall_in = d / std::cos(std::abs(WrapPi(axis_rad + mid - travel_rad)));
+      ahead.wall_normal_rad = mid;
+      return true;
     }
   }
+  return false;
+}
+
+Ahead LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double heading_error_rad,
+                const HallwayEstimate& walls, const HallwayFollowerConfig& c) {
+  Ahead ahead;
+  const double half_cone = DegToRad(c.cone_deg) / 2.0;
+  const double front_half = DegToRad(c.front_half_angle_deg) + 1e-9;
+  std::vector<Reading> front, wide;  // unexplained echoes ahead, and within the oblique fan
+  for (int k = 0; k < c.sensor_count; ++k) {
+    const double bearing = SensorBearingRad(k, c);
+    const double off = std::abs(WrapPi(bearing - travel_rad));
+    const double r = scan[k].range_in;
+    if (!scan[k].valid) {
+      // An echo the gate set aside as outside the accurate footprint is rough, but
+      // something stands there: in the front fan it bounds the free space all the same (a
+      // corner met at a slant returns only such echoes).
+      if (scan[k].outside_footprint && off <= front_half && std::isfinite(r) && r > 0.0) {
+        ahead.free_in = std::min(ahead.free_in,
+                                 (c.head_radius_in + r) * std::cos(std::max(0.0, off - half_cone)));
+      }
+      continue;
+    }
+    if (off > DegToRad(std::max(c.front_half_angle_deg, c.oblique_half_angle_deg)) + 1e-9) {
+      continue;
+    }
+    double side_range = kNoObstacle;
+    for (const WallLine* w : {&walls.left, &walls.right}) {
+      if (!w->valid) continue;
+      side_range =
+          std::min(side_range, PredictedWallRangeIn(bearing, w->normal_rad, w->distance_in, c));
+    }
+    if (r >= side_range - c.side_echo_margin_in) continue;
+    wide.push_back({bearing, r});
+    if (off > front_half) {
+      // A flank sensor hears a smooth surface only when the surface faces it (its normal
+      // within the cone): a plane that faces it crosses the travel line at most
+      // R / cos(off - half cone) ahead. An oblique wall ahead the front sensors do not
+      // hear (it meets them too steeply) still stops the base.
+      ahead.free_in = std::min(ahead.free_in,
+                               (c.head_radius_in + r) / std::cos(std::max(0.0, off - half_cone)));
+      continue;
+    }
+    front.push_back({bearing, r});
+    // The echo may come from anywhere in the cone; the direction nearest the travel axis
+    // gives the most cautious along-travel distance.
+    ahead.free_in =
+        std::min(ahead.free_in, (c.head_radius_in + r) * std::cos(std::max(0.0, off - half_cone)));
+  }
+  ahead.free_in = std::min(ahead.free_in, SideWallsHeadedIntoIn(walls, travel_rad, c));
+  // A wall across the hallway has its normal along the hallway axis.
+  const double axis_rad = travel_rad - heading_error_rad;
+  ahead.wall_in = AgreedWallDistance(front, axis_rad, 2, c);
+  // Only when the front sensors see something that is not across the hallway (at an
+  // oblique wall the gate often leaves one of them: the others meet it too steeply).
+  if (!std::isfinite(ahead.wall_in) && !front.empty()) {
+    ObliqueWallAhead(front, wide, axis_rad, travel_rad, c, ahead);
+  }
+  return ahead;
 }
 
 }  // namespace
@@ -288,10 +310,14 @@ HallwayEstimate EstimateHallway(const std::vector<SonarRange>& scan,
     est.lateral_offset_in = (est.right.distance_in - est.left.distance_in) / 2.0;
     est.hallway_width_in = est.right.distance_in + est.left.distance_in;
   }
-  LookAhead(scan, 0.0, est.heading_error_rad, est, c, est.free_forward_in, est.wall_forward_in,
-            est.wall_forward_normal_rad);
-  LookAhead(scan, kPi, est.heading_error_rad, est, c, est.free_backward_in, est.wall_backward_in,
-            est.wall_backward_normal_rad);
+  const Ahead forward = LookAhead(scan, 0.0, est.heading_error_rad, est, c);
+  est.free_forward_in = forward.free_in;
+  est.wall_forward_in = forward.wall_in;
+  est.wall_forward_normal_rad = forward.wall_normal_rad;
+  const Ahead backward = LookAhead(scan, kPi, est.heading_error_rad, est, c);
+  est.free_backward_in = backward.free_in;
+  est.wall_backward_in = backward.wall_in;
+  est.wall_backward_normal_rad = backward.wall_normal_rad;
   return est;
 }
 
