@@ -168,16 +168,7 @@ Ahead LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double h
     const double bearing = SensorBearingRad(k, c);
     const double off = std::abs(WrapPi(bearing - travel_rad));
     const double r = scan[k].range_in;
-    if (!scan[k].valid) {
-      // An echo the gate set aside as outside the accurate footprint is rough, but
-      // something stands there: in the front fan it bounds the free space all the same (a
-      // corner met at a slant returns only such echoes).
-      if (scan[k].outside_footprint && off <= front_half && std::isfinite(r) && r > 0.0) {
-        ahead.free_in = std::min(ahead.free_in,
-                                 (c.head_radius_in + r) * std::cos(std::max(0.0, off - half_cone)));
-      }
-      continue;
-    }
+    if (!scan[k].valid) continue;
     if (off > DegToRad(std::max(c.front_half_angle_deg, c.oblique_half_angle_deg)) + 1e-9) {
       continue;
     }
@@ -189,15 +180,7 @@ Ahead LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double h
     }
     if (r >= side_range - c.side_echo_margin_in) continue;
     wide.push_back({bearing, r});
-    if (off > front_half) {
-      // A flank sensor hears a smooth surface only when the surface faces it (its normal
-      // within the cone): a plane that faces it crosses the travel line at most
-      // R / cos(off - half cone) ahead. An oblique wall ahead the front sensors do not
-      // hear (it meets them too steeply) still stops the base.
-      ahead.free_in = std::min(ahead.free_in,
-                               (c.head_radius_in + r) / std::cos(std::max(0.0, off - half_cone)));
-      continue;
-    }
+    if (off > front_half) continue;
     front.push_back({bearing, r});
     // The echo may come from anywhere in the cone; the direction nearest the travel axis
     // gives the most cautious along-travel distance.
