@@ -6,7 +6,9 @@
 # sender that names its interface passes the routing table; the rule stops it too). Needs
 # root (ip netns) and nft (Debian's nftables).
 #
-#   deploy/netns.sh up NAME NET      create (removes leftovers of the same NAME first)
+#   deploy/netns.sh up NAME NET [multicast]   create (removes leftovers of the same NAME
+#                                    first); with `multicast`, one LAN where multicast works
+#                                    (a route for 224.0.0.0/4 on the link, no drop rule)
 #   deploy/netns.sh down NAME        remove both namespaces (and so the link)
 #   deploy/netns.sh cut NAME         take the link down (both ends)
 #   deploy/netns.sh restore NAME     bring it up again
@@ -15,7 +17,7 @@
 # NAME: at most 12 characters (interface names are limited to 15). NET: 0-255.
 set -euo pipefail
 
-usage() { echo "usage: $0 up NAME NET | down NAME | cut NAME | restore NAME | exec NAME base|robot CMD..." >&2; exit 2; }
+usage() { echo "usage: $0 up NAME NET [multicast] | down NAME | cut NAME | restore NAME | exec NAME base|robot CMD..." >&2; exit 2; }
 [ $# -ge 2 ] || usage
 verb=$1 name=$2
 [ ${#name} -le 12 ] || { echo "$0: NAME '$name' is longer than 12 characters" >&2; exit 2; }
@@ -29,8 +31,8 @@ down() {
 
 case "$verb" in
   up)
-    [ $# -eq 3 ] || usage
-    net=$3
+    [ $# -eq 3 ] || { [ $# -eq 4 ] && [ "$4" = multicast ]; } || usage
+    net=$3 multicast=${4:-}
     command -v nft > /dev/null || { echo "$0: nft not found (apt-get install nftables)" >&2; exit 2; }
     [[ "$net" =~ ^[0-9]+$ ]] && [ "$net" -le 255 ] || { echo "$0: NET '$net' is not 0-255" >&2; exit 2; }
     down
@@ -44,6 +46,12 @@ case "$verb" in
     for ns_if in "$base:$vb" "$robot:$vr"; do
       ns=${ns_if%%:*} if=${ns_if##*:}
       ip -n "$ns" link set lo up
+      if [ -n "$multicast" ]; then
+        ip -n "$ns" link set "$if" multicast on
+        ip -n "$ns" link set "$if" up
+        ip -n "$ns" route add 224.0.0.0/4 dev "$if"
+        continue
+      fi
       ip -n "$ns" link set "$if" multicast off
       ip -n "$ns" link set "$if" up
       ip netns exec "$ns" nft -f - <<'NFT'
@@ -53,7 +61,9 @@ table inet stickrep_no_multicast {
 }
 NFT
     done
-    echo "base station 10.$net.0.1 in netns $base, robot 10.$net.0.2 in netns $robot; no multicast"
+    lan="no multicast"
+    [ -z "$multicast" ] || lan="multicast on the link"
+    echo "base station 10.$net.0.1 in netns $base, robot 10.$net.0.2 in netns $robot; $lan"
     ;;
   down) down ;;
   cut)

@@ -48,13 +48,13 @@ std::pair<int, std::string> Shell(const std::string& command) {
 // when the test fails.
 class TwoHostDeployment : public ::testing::Test {
  protected:
-  void SetUpHosts(const std::string& name, int net, int domain) {
+  void SetUpHosts(const std::string& name, int net, int domain, bool multicast = false) {
     if (geteuid() != 0) GTEST_SKIP() << "network namespaces need root: deploy test skipped";
     name_ = name;
     domain_ = domain;
     base_ip_ = "10." + std::to_string(net) + ".0.1";
     const auto [rc, out] = Shell("bash " + SourcePath("deploy/netns.sh") + " up " + name + " " +
-                                 std::to_string(net));
+                                 std::to_string(net) + (multicast ? " multicast" : ""));
     ASSERT_EQ(rc, 0) << out;
     hosts_up_ = true;
   }
@@ -431,6 +431,65 @@ TEST_F(TwoHostDeployment, LinkCutOf60sStopsTheBaseWithoutGrowingMemoryAndTheMiss
   ExpectMovingAgainAfter(restored);
   EXPECT_TRUE(PrintLinkBack()) << Outputs();
   ExpectCorrectPoseAndCleanEnd();
+}
+
+// One LAN with multicast, no discovery server: every process with Fast DDS's simple
+// discovery, the robot's on one host and the localizer and executive on the other; the
+// console on the base station, plain, finds every topic and echoes what crosses the link.
+TEST_F(TwoHostDeployment, ConsoleOnOneLanWithMulticastSeesEveryTopic) {
+  SetUpHosts("sxdepmc", 239, 46, /*multicast=*/true);
+  const std::string domain = std::to_string(domain_);
+  std::vector<std::unique_ptr<launch::ChildProcess>> processes;
+  const auto start = [&](const std::string& host, const std::string& exe,
+                         std::vector<std::string> args) {
+    std::vector<std::string> argv{BinPath(exe), "--domain", domain, "--host", host};
+    argv.insert(argv.end(), args.begin(), args.end());
+    processes.push_back(std::make_unique<launch::ChildProcess>(exe, InNs(host, argv)));
+  };
+  start("robot", "stickrep-virtual-robot",
+        {"--config", SourcePath("deploy/configs/virtual_robot_main_job.yaml")});
+  for (const char* exe : {"stickrep-sonar", "stickrep-camera", "stickrep-locomotion",
+                          "stickrep-landmark"}) {
+    start("robot", exe, {});
+  }
+  start("base", "stickrep-localizer", {});
+  start("base", "stickrep-executive", {});
+  const std::string console = "ip netns exec " + name_ + "-base " + BinPath("stickrep-console") +
+                              " --domain " + domain + " ";
+  // Every topic of the catalogue, once every process has announced its endpoints.
+  // (Their output is drained as the test goes, so that no process blocks on a full pipe.)
+  const auto drain = [&] {
+    for (auto& p : processes) p->ReadLines();
+  };
+  std::set<std::string> seen;
+  const std::set<std::string> catalog = CatalogTopics();
+  for (const double until = WallNowS() + 60.0; seen != catalog && WallNowS() < until;) {
+    drain();
+    const auto [rc, listed] = Shell(console + "list --json --wait 2");
+    seen.clear();
+    if (rc != 0 || listed.find('[') == std::string::npos) continue;
+    for (const auto& t : nlohmann::json::parse(listed.substr(listed.find('[')))) {
+      seen.insert(t.at("topic").get<std::string>());
+    }
+  }
+  for (const std::string& t : catalog) EXPECT_EQ(seen.count(t), 1u) << t << " not listed";
+  for (const std::string t : {"sim/ground_truth", "robot/odometry", "mission/status"}) {
+    drain();
+    const auto [echo_rc, echoed] = Shell(console + "echo " + t + " --count 1 --timeout 30");
+    EXPECT_EQ(echo_rc, 0) << t << ": " << echoed;
+    EXPECT_NE(echoed.find("\"header\""), std::string::npos) << t << ": " << echoed;
+  }
+  // The processes on the two hosts found each other: the mission left its first state.
+  const auto [status_rc, status] = Shell(console + "echo mission/status --once --field state");
+  EXPECT_EQ(status_rc, 0) << status;
+  EXPECT_EQ(status.find("WAITING_FOR_COMPONENTS"), std::string::npos) << status;
+  std::printf("[deploy] one LAN, multicast: %zu topics listed; mission state %s", seen.size(),
+              status.c_str());
+  for (auto& p : processes) p->Signal(SIGINT);
+  for (auto& p : processes) {
+    EXPECT_TRUE(p->WaitExit(20.0)) << p->name();
+    EXPECT_EQ(p->exit_code(), 0) << p->name() << ": " << p->output();
+  }
 }
 
 }  // namespace
