@@ -10,6 +10,7 @@
 #include "localizationPubSubTypes.h"
 #include "localizer/localizer.h"
 #include "localizer/localizer_config.h"
+#include "localizer/map_msg.h"
 #include "perceptionPubSubTypes.h"
 #include "runtime/endpoint.h"
 #include "runtime/latency.h"
@@ -40,30 +41,6 @@ msgs::LocalizationStatus ToMsg(Status s) {
     case Status::kLost: return msgs::LOCALIZATION_LOST;
   }
   return msgs::LOCALIZATION_RECOVERING;
-}
-
-msgs::StickRepMap ToMsg(const map::Map& m) {
-  msgs::StickRepMap out;
-  out.name(m.info().name);
-  for (const map::Ring& r : m.rings()) {
-    msgs::MapRing ring;
-    ring.ring_id(r.id);
-    ring.closed(r.closed);
-    for (int i = 0; i < r.EdgeCount(); ++i) {
-      const map::Edge& e = r.edges[i];
-      msgs::MapEdge edge;
-      edge.kind(static_cast<msgs::EdgeKind>(static_cast<int>(e.type)));
-      edge.metric_in(e.metric_in);
-      edge.door_class(e.door_class ? map::DoorClassName(*e.door_class) : "");
-      edge.pattern(e.pattern);
-      edge.start_angle_deg(r.nodes[i].angle_deg);
-      edge.x_in(r.nodes[i].x_in);
-      edge.y_in(r.nodes[i].y_in);
-      ring.edges().push_back(edge);
-    }
-    out.rings().push_back(ring);
-  }
-  return out;
 }
 
 class LocalizerNode : public runtime::ProcessNode {
@@ -106,7 +83,7 @@ class LocalizerNode : public runtime::ProcessNode {
   }
 
   void Activate() override {
-    msgs::StickRepMap m = ToMsg(view_->original());
+    msgs::StickRepMap m = localizer::ToMsg(view_->original());
     map_writer_->Publish(m, ctx_->now_ns());
     PublishPose();
   }

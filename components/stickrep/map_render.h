@@ -22,12 +22,21 @@ struct MarkerOverlay {
   double y_in = 0.0;
   std::string label;
 };
+// A pose of the robot: a labelled dot with an arrow along its heading (building frame:
+// radians counter-clockwise from +x).
+struct PoseOverlay {
+  double x_in = 0.0;
+  double y_in = 0.0;
+  double heading_rad = 0.0;
+  std::string label;
+};
 
 struct RenderOptions {
   int width_px = 1800;  // image width; the height follows the map's aspect ratio
   bool label_rings = true;
   std::vector<PathOverlay> paths;      // drawn in red
   std::vector<MarkerOverlay> markers;  // drawn as labelled dots
+  std::vector<PoseOverlay> poses;      // drawn as labelled dots with arrows, in order
 };
 
 // Throws std::runtime_error if the file cannot be written.
