@@ -9,13 +9,13 @@ namespace stickrep::runtime {
 
 namespace dds = eprosima::fastdds::dds;
 
-namespace {
-
 std::string GuidText(const eprosima::fastrtps::rtps::GUID_t& guid) {
   std::ostringstream s;
   s << guid;
   return s.str();
 }
+
+namespace {
 
 double Seconds(const eprosima::fastrtps::Duration_t& d) {
   if (d == eprosima::fastrtps::c_TimeInfinite) return 0.0;

@@ -70,6 +70,9 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
 std::vector<TopicSummary> Summarise(const std::vector<DiscoveredEndpoint>& endpoints);
 
 // Reads "key=value" from a StickRep user_data text; empty if absent.
+// A GUID as Fast DDS prints it ("01.0f.....|0.0.1.3"): the key of DiscoveredEndpoint::guid.
+std::string GuidText(const eprosima::fastrtps::rtps::GUID_t& guid);
+
 std::string UserDataField(const std::string& user_data, const std::string& key);
 
 }  // namespace stickrep::runtime

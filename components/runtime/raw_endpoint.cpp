@@ -2,7 +2,11 @@
 
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
-#include <sstream>
+#include <fastdds/rtps/common/InstanceHandle.h>
+
+#include <algorithm>
+
+#include "runtime/discovery.h"
 
 namespace stickrep::runtime {
 
@@ -12,12 +16,6 @@ namespace {
 
 dds::TopicDataType* MakeRaw(const SupportFactory& real) {
   return new RawPubSubType(std::unique_ptr<dds::TopicDataType>(real()));
-}
-
-std::string GuidText(const eprosima::fastrtps::rtps::GUID_t& guid) {
-  std::ostringstream s;
-  s << guid;
-  return s.str();
 }
 
 }  // namespace
@@ -49,6 +47,27 @@ RawReader::RawReader(Participant& participant, Executor& executor, const std::st
 }
 
 RawReader::~RawReader() { participant_.DeleteDataReader(reader_); }
+
+void RawReader::Listener::on_requested_deadline_missed(
+    dds::DataReader*, const dds::RequestedDeadlineMissedStatus& s) {
+  r_.counters_.deadline_missed += s.total_count_change;
+}
+
+void RawReader::Listener::on_liveliness_changed(dds::DataReader*,
+                                                const dds::LivelinessChangedStatus& s) {
+  r_.counters_.alive_writers = s.alive_count;
+  if (s.not_alive_count_change <= 0) return;
+  r_.counters_.liveliness_lost_events++;
+  eprosima::fastrtps::rtps::GUID_t writer;
+  eprosima::fastrtps::rtps::iHandle2GUID(writer, s.last_publication_handle);
+  std::lock_guard<std::mutex> lock(r_.mutex_);
+  r_.writers_lost_.push_back(GuidText(writer));
+}
+
+std::vector<std::string> RawReader::writers_lost() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return writers_lost_;
+}
 
 void RawReader::Drain() {
   RawSample sample;

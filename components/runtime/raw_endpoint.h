@@ -12,7 +12,9 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "runtime/endpoint.h"
 #include "runtime/executor.h"
@@ -73,6 +75,11 @@ class RawReader : public Drainable {
   std::uint64_t received() const { return counters_.samples.load(); }
   std::uint64_t lost() const { return lost_; }
   int matched() const { return counters_.matched.load(); }
+  // Deadlines (of the QoS given) that passed with no sample, as DDS reports them.
+  std::uint64_t deadlines_missed() const { return counters_.deadline_missed.load(); }
+  int alive_writers() const { return counters_.alive_writers.load(); }
+  // The GUIDs of writers whose liveliness was lost, once per loss, in order.
+  std::vector<std::string> writers_lost() const;
 
  private:
   class Listener : public eprosima::fastdds::dds::DataReaderListener {
@@ -83,6 +90,11 @@ class RawReader : public Drainable {
                                  const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
       r_.counters_.matched = s.current_count;
     }
+    void on_requested_deadline_missed(
+        eprosima::fastdds::dds::DataReader*,
+        const eprosima::fastdds::dds::RequestedDeadlineMissedStatus& s) override;
+    void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,
+                               const eprosima::fastdds::dds::LivelinessChangedStatus& s) override;
 
    private:
     RawReader& r_;
@@ -95,6 +107,8 @@ class RawReader : public Drainable {
   EndpointCounters counters_;
   std::map<std::string, std::uint64_t> last_sequence_;  // per writer GUID
   std::uint64_t lost_ = 0;
+  mutable std::mutex mutex_;  // guards writers_lost_ (written on a DDS thread)
+  std::vector<std::string> writers_lost_;
   Listener listener_;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
 };
