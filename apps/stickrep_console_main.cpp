@@ -10,9 +10,15 @@
 #include "runtime/process.h"
 #include "runtime/system_config.h"
 
+namespace {
+constexpr const char* kWaitHelp =
+    "seconds to listen to discovery (default 4: a process announces itself every 3 s)";
+}  // namespace
+
 int main(int argc, char** argv) {
   using stickrep::console::ConsoleOptions;
-  CLI::App app{"StickRep remote console: list the topics of a domain, echo a topic, send a goal"};
+  CLI::App app{"StickRep remote console: list the topics of a domain, echo a topic, show the "
+               "robot's pose on the map, send a goal"};
   ConsoleOptions o;
   o.system_file = stickrep::runtime::DefaultConfigDir() + "/system.yaml";
   app.add_option("--system", o.system_file, "deployment settings (domain, QoS file)");
@@ -21,7 +27,7 @@ int main(int argc, char** argv) {
   stickrep::runtime::AddDeploymentOptions(app, o.deployment);
   app.require_subcommand(1);
   CLI::App* list = app.add_subcommand("list", "every topic on the domain with its QoS");
-  list->add_option("--wait", o.wait_s, "seconds to listen to discovery")->check(CLI::PositiveNumber);
+  list->add_option("--wait", o.wait_s, kWaitHelp)->check(CLI::PositiveNumber);
   list->add_flag("--json", o.json, "JSON instead of a table");
   CLI::App* echo = app.add_subcommand("echo", "print the samples of a topic as JSON lines");
   std::string topic;
@@ -50,7 +56,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   info->add_option("topic", topic, "e.g. robot/sonar")->required();
   info->add_flag("-v,--verbose", verbose, "add GUIDs and types");
-  info->add_option("--wait", o.wait_s, "seconds to listen to discovery")->check(CLI::PositiveNumber);
+  info->add_option("--wait", o.wait_s, kWaitHelp)->check(CLI::PositiveNumber);
   info->add_flag("--json", o.json, "JSON instead of a table");
   CLI::App* status = app.add_subcommand(
       "status", "one line per process from its heartbeat, refreshing (Ctrl-C ends)");
@@ -62,13 +68,17 @@ int main(int argc, char** argv) {
   status->add_flag("--json", o.json, "one JSON array per refresh");
   CLI::App* doctor = app.add_subcommand(
       "doctor", "QoS that do not match, type mismatches, readers without writers and writers "
-                "without readers");
-  doctor->add_option("--wait", o.wait_s, "seconds to listen to discovery")
+                "without readers, missed deadlines and lost liveliness");
+  doctor->add_option("--wait", o.wait_s, kWaitHelp)
+      ->check(CLI::PositiveNumber);
+  doctor->add_option("--watch", o.duration_s,
+                     "seconds to read the topics with a deadline or a liveliness lease "
+                     "(default 3)")
       ->check(CLI::PositiveNumber);
   doctor->add_flag("--json", o.json, "JSON instead of lines");
   CLI::App* bw = app.add_subcommand(
       "bw", "samples, rate and serialized bytes/s of every topic that has a writer");
-  bw->add_option("--wait", o.wait_s, "seconds to listen to discovery first")
+  bw->add_option("--wait", o.wait_s, "seconds to listen to discovery first (default 4)")
       ->check(CLI::PositiveNumber);
   bw->add_option("--duration", o.timeout_s, "seconds to measure (default 10)")
       ->check(CLI::PositiveNumber);
@@ -80,6 +90,22 @@ int main(int argc, char** argv) {
   goal->add_flag("--json", o.json, "the executive's answer as JSON");
   goal->add_option("--timeout", o.timeout_s, "give up after this many seconds (default 10)")
       ->check(CLI::NonNegativeNumber);
+  CLI::App* pose = app.add_subcommand(
+      "pose", "the map with the robot's pose (an arrow) and the other hypotheses (digits by "
+              "rank), refreshing every second (Ctrl-C ends)");
+  pose->add_flag_callback("--once", [&o] { o.count = 1; },
+                          "print one frame once the map and a pose are in, and exit");
+  pose->add_option("--duration", o.duration_s, "stop after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  pose->add_option("--timeout", o.timeout_s,
+                   "exit 1 when the map or a pose does not come in this long (default 10)")
+      ->check(CLI::NonNegativeNumber);
+  pose->add_option("--cols", o.cols, "width of the map in characters (default 100)")
+      ->check(CLI::Range(10, 1000));
+  pose->add_flag("--json", o.json,
+                 "one JSON object per refresh (status, confidence, best, hypotheses) instead of "
+                 "the map");
+  pose->add_option("--png", o.png, "write the map to scale with the pose to this PNG and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -93,6 +119,7 @@ int main(int argc, char** argv) {
     if (*info) return stickrep::console::InfoTopic(o, topic, verbose, std::cout);
     if (*status) return stickrep::console::ShowStatus(o, std::cout);
     if (*doctor) return stickrep::console::Doctor(o, std::cout);
+    if (*pose) return stickrep::console::ShowPose(o, std::cout);
     if (*hz) return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kRate, std::cout);
     if (*delay) {
       return stickrep::console::WatchTopic(o, topic, stickrep::console::TopicStat::kDelay, std::cout);

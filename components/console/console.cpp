@@ -238,7 +238,8 @@ int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& o
                         [&](const runtime::RawSample& m, const runtime::RawSampleInfo&) {
                           if (o.count > 0 && printed >= o.count) return;
                           try {
-                            const nlohmann::json j = support->decode_json(m.data.data(), m.data.size());
+                            const nlohmann::json j = EchoForm(
+                                support->name, support->decode_json(m.data.data(), m.data.size()));
                             out << (o.field.empty() ? j : Field(j, o.field)).dump() << '\n'
                                 << std::flush;
                             printed++;
@@ -256,7 +257,15 @@ int EchoTopic(const ConsoleOptions& o, const std::string& topic, std::ostream& o
     ex.SpinOnce(std::chrono::milliseconds(50));
   }
   reader.reset();
-  return (o.count > 0 && printed < o.count) ? 1 : 0;
+  if (o.count > 0 && printed < o.count) {
+    if (runtime::KeepRunning().load()) {
+      fmt::print(stderr, "{} of {} sample(s) of {} within {:g} s\n", printed, o.count, topic,
+                 o.timeout_s);
+      return 1;
+    }
+    return 0;  // Ctrl-C
+  }
+  return 0;
 }
 
 namespace {
@@ -437,21 +446,23 @@ int ShowStatus(const ConsoleOptions& o, std::ostream& out) {
     const int64_t now = runtime::WallClockNowNs();
     nlohmann::json rows = nlohmann::json::array();
     if (!o.json) {
-      fmt::print(out, "{:<14} {:<10} {:<12} {:>7} {:>10} {:>10} {:>8}  {}\n", "PROCESS", "HOST",
+      fmt::print(out, "{:<14} {:<10} {:<22} {:>7} {:>10} {:>10} {:>8}  {}\n", "PROCESS", "HOST",
                  "STATE", "AGE S", "IN", "OUT", "DROPPED", "MESSAGE");
     }
     for (const auto& [name, entry] : latest) {
       const auto& [m, received_ns] = entry;
       const double age_s = (now - received_ns) * 1e-9;
       if (o.json) {
-        rows.push_back({{"process", name}, {"host", m.host()}, {"state", Name(m.state())},
+        rows.push_back({{"process", name},
+                        {"host", m.host()},
+                        {"state", msgs::EnumName(m.state())},
                         {"heartbeat_age_s", age_s}, {"samples_in", m.samples_in()},
                         {"samples_out", m.samples_out()},
                         {"samples_dropped", m.samples_dropped()}, {"message", m.message()}});
       } else {
-        fmt::print(out, "{:<14} {:<10} {:<12} {:>7.1f} {:>10} {:>10} {:>8}  {}\n", name, m.host(),
-                   Name(m.state()), age_s, m.samples_in(), m.samples_out(), m.samples_dropped(),
-                   m.message());
+        fmt::print(out, "{:<14} {:<10} {:<22} {:>7.1f} {:>10} {:>10} {:>8}  {}\n", name, m.host(),
+                   msgs::EnumName(m.state()), age_s, m.samples_in(), m.samples_out(),
+                   m.samples_dropped(), m.message());
       }
     }
     if (o.json) out << rows.dump() << '\n';
@@ -459,6 +470,87 @@ int ShowStatus(const ConsoleOptions& o, std::ostream& out) {
   } while (o.count != 1 && runtime::KeepRunning().load() && Clock::now() < until);
   return 0;
 }
+
+namespace {
+
+// Reads every timed topic (a deadline or a liveliness lease in the catalogue) that has a
+// writer, with the catalogue's QoS, for `watch_s`: the deadlines DDS reports missed and the
+// writers whose liveliness it reports lost. A writer of a topic with a lease that sends
+// nothing for longer than the lease is counted as lost too: Fast DDS 2.9 asserts the
+// liveliness of every AUTOMATIC writer of a reader while any one of them is alive
+// (eProsima/Fast-DDS#4373, fixed after 2.9), so one dead heartbeat writer among seven goes
+// unreported by DDS itself.
+std::vector<TimelinessWatch> WatchTimedTopics(Session& s, double watch_s) {
+  const auto endpoints = s.listener->Endpoints();
+  struct Silence {
+    int64_t last_ns = 0;
+    int64_t longest_ns = 0;
+  };
+  struct Watched {
+    TimelinessWatch watch;
+    std::vector<std::string> writer_guids;
+    std::map<std::string, Silence> silence;  // by writer GUID
+    std::unique_ptr<runtime::RawReader> reader;
+  };
+  std::vector<std::unique_ptr<Watched>> watched;
+  runtime::Executor ex;
+  const int64_t begin_ns = runtime::WallClockNowNs();
+  for (const auto& t : runtime::Summarise(endpoints)) {
+    const MessageType* type = FindMessageType(t.type);
+    if (t.writers == 0 || type == nullptr || !s.participant->catalog().HasTopic(t.topic)) continue;
+    const runtime::QosProfile qos = s.participant->catalog().ForTopic(t.topic);
+    if (qos.deadline_s <= 0.0 && qos.liveliness_lease_s <= 0.0) continue;
+    auto w = std::make_unique<Watched>();
+    w->watch = {t.topic, qos.deadline_s, qos.liveliness_lease_s, watch_s, {}, 0, {}, 0};
+    for (const auto& e : endpoints) {
+      if (e.topic != t.topic || !e.is_writer) continue;
+      w->watch.writers.push_back(e.participant.empty() ? e.guid : e.participant);
+      w->writer_guids.push_back(e.guid);
+    }
+    Watched* into = w.get();
+    w->reader = std::make_unique<runtime::RawReader>(
+        *s.participant, ex, t.topic, type->make_support, qos,
+        [into, begin_ns](const runtime::RawSample&, const runtime::RawSampleInfo& i) {
+          Silence& q = into->silence[i.writer_guid];
+          q.longest_ns = std::max(q.longest_ns, i.reception_ns - (q.last_ns ? q.last_ns : begin_ns));
+          q.last_ns = i.reception_ns;
+        });
+    watched.push_back(std::move(w));
+  }
+  if (watched.empty()) return {};
+  ex.Spin(runtime::KeepRunning(),
+          runtime::Executor::Clock::now() +
+              std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                  std::chrono::duration<double>(watch_s)));
+  const int64_t end_ns = runtime::WallClockNowNs();
+  std::map<std::string, std::string> names;  // writer GUID -> process
+  for (const auto& e : s.listener->Endpoints()) names[e.guid] = e.participant;
+  const auto name_of = [&](const std::string& guid) {
+    const auto it = names.find(guid);
+    return it == names.end() || it->second.empty() ? guid : it->second;
+  };
+  std::vector<TimelinessWatch> out;
+  for (auto& w : watched) {
+    TimelinessWatch& t = w->watch;
+    t.deadlines_missed = w->reader->deadlines_missed();
+    t.alive_writers_at_end = w->reader->alive_writers();
+    for (const std::string& guid : w->reader->writers_lost()) t.writers_lost.push_back(name_of(guid));
+    const int64_t lease_ns = static_cast<int64_t>(t.lease_s * 1e9);
+    for (const std::string& guid : w->writer_guids) {
+      const Silence q = w->silence[guid];
+      const int64_t longest = std::max(q.longest_ns, end_ns - (q.last_ns ? q.last_ns : begin_ns));
+      const std::string name = name_of(guid);
+      if (lease_ns > 0 && longest > lease_ns &&
+          std::find(t.writers_lost.begin(), t.writers_lost.end(), name) == t.writers_lost.end()) {
+        t.writers_lost.push_back(name);
+      }
+    }
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+}  // namespace
 
 int Doctor(const ConsoleOptions& o, std::ostream& out) {
   Session s = Join(o);
@@ -468,11 +560,12 @@ int Doctor(const ConsoleOptions& o, std::ostream& out) {
               std::chrono::duration_cast<runtime::Executor::Clock::duration>(
                   std::chrono::duration<double>(o.wait_s)));
   const auto endpoints = s.listener->Endpoints();
-  const auto findings = Diagnose(endpoints);
-  bool broken = false;
-  for (const Finding& f : findings) {
-    broken |= f.problem == "incompatible QoS" || f.problem == "type mismatch";
+  auto findings = Diagnose(endpoints);
+  const double watch_s = o.duration_s > 0.0 ? o.duration_s : 3.0;
+  for (Finding& f : DiagnoseTimeliness(WatchTimedTopics(s, watch_s))) {
+    findings.push_back(std::move(f));
   }
+  const bool broken = std::any_of(findings.begin(), findings.end(), IsFault);
   if (o.json) {
     nlohmann::json list = nlohmann::json::array();
     for (const Finding& f : findings) {
@@ -490,6 +583,9 @@ int Doctor(const ConsoleOptions& o, std::ostream& out) {
                f.writer.empty() ? "" : "writer " + f.writer,
                !f.writer.empty() && !f.reader.empty() ? "; " : "",
                f.reader.empty() ? "" : "reader " + f.reader);
+    if (f.problem == "missed deadline" || f.problem == "lost liveliness") {
+      fmt::print(out, "{:<17} {}\n", "", f.detail);
+    }
   }
   if (endpoints.empty()) {
     fmt::print(stderr, "no endpoint on domain {} within {:g} s\n", s.system.domain_id, o.wait_s);

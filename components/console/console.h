@@ -17,13 +17,17 @@ namespace stickrep::console {
 struct ConsoleOptions {
   std::string system_file;
   int domain_id = -1;          // -1: from the system file
-  double wait_s = 3.0;         // how long `list` listens to discovery
+  // How long `list`, `info`, `doctor`, `bw` listen to discovery. Fast DDS's simple discovery
+  // announces a participant every 3 s: a new console may hear a running process only then.
+  double wait_s = 4.0;
   int count = 0;               // `echo`: stop after this many samples (0: until stopped)
   double timeout_s = 0.0;      // `echo`: give up after this long (0: never)
   bool json = false;
   std::string field;           // `echo --field a.b`: print only that member
   std::size_t window = 50;     // `hz`, `delay`: samples in the sliding window
   double duration_s = 0.0;     // `hz`, `delay`: stop after this long (0: until Ctrl-C)
+  int cols = 100;              // `pose`: width of the map drawn in characters
+  std::string png;             // `pose --png`: write the map with the pose to this file
   // Fast DDS profile and discovery servers; the console joins a discovery-server deployment
   // as a super client (deploy/fastdds/discovery_client.xml) so that it sees every topic.
   runtime::DeploymentOptions deployment;
@@ -83,6 +87,15 @@ int MeasureBandwidth(const ConsoleOptions& options, std::ostream& out);
 // json). 0 when the goal was accepted, 1 when refused or unanswered.
 int SendGoal(const ConsoleOptions& options, const std::string& goal_id, const std::string& target,
              std::ostream& out);
+
+// `pose`: the localizer's map (map/stickrep) drawn in the terminal with the best pose as an
+// arrow and the other hypotheses as digits (console/pose_view.h), under a line of status,
+// confidence, candidates and the best pose; again every second until Ctrl-C or duration_s,
+// once with count 1. json prints the pose as one JSON object per refresh instead (the map
+// is then not needed); png writes one picture of the map to scale with the pose and exits.
+// 1 when the map or a pose does not come within timeout_s (default 10 s); InputError for a
+// png path that cannot be written.
+int ShowPose(const ConsoleOptions& options, std::ostream& out);
 
 // The table `list` prints, from summaries (kept apart from DDS for testing).
 void PrintTopicTable(const std::vector<runtime::TopicSummary>& topics, std::ostream& out);

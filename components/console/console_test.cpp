@@ -10,6 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "basePubSubTypes.h"
 #include "common/input_error.h"
 #include "console/message_json.h"
 #include "console/doctor.h"

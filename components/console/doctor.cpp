@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 
 namespace stickrep::console {
@@ -84,5 +85,38 @@ std::vector<Finding> Diagnose(const std::vector<runtime::DiscoveredEndpoint>& en
   }
   return out;
 }
+
+std::vector<Finding> DiagnoseTimeliness(const std::vector<TimelinessWatch>& watches) {
+  std::vector<Finding> out;
+  for (const TimelinessWatch& w : watches) {
+    std::string writers;
+    for (const std::string& name : w.writers) writers += (writers.empty() ? "" : ", ") + name;
+    if (w.deadline_s > 0.0 && w.deadlines_missed > 0) {
+      out.push_back({w.topic, "missed deadline", "deadline",
+                     fmt::format("{} offers {:g} s", writers.empty() ? "?" : writers, w.deadline_s),
+                     fmt::format("stickrep-console requests {:g} s", w.deadline_s),
+                     fmt::format("{}: {} deadlines of {:g} s passed with no sample in the {:g} s "
+                                 "watched",
+                                 w.topic, w.deadlines_missed, w.deadline_s, w.watched_s)});
+    }
+    std::vector<std::string> lost = w.writers_lost;
+    std::sort(lost.begin(), lost.end());
+    for (auto it = lost.begin(); it != lost.end();) {
+      const auto next = std::upper_bound(it, lost.end(), *it);
+      out.push_back({w.topic, "lost liveliness", "liveliness lease",
+                     fmt::format("{} (lease {:g} s)", *it, w.lease_s),
+                     fmt::format("stickrep-console requests {:g} s", w.lease_s),
+                     fmt::format("{}: {} lost its liveliness {} time(s) in the {:g} s watched "
+                                 "(no sample or assertion for {:g} s); {} writer(s) alive at "
+                                 "the end",
+                                 w.topic, *it, next - it, w.watched_s, w.lease_s,
+                                 w.alive_writers_at_end)});
+      it = next;
+    }
+  }
+  return out;
+}
+
+bool IsFault(const Finding& f) { return f.problem != "no writer" && f.problem != "no reader"; }
 
 }  // namespace stickrep::console

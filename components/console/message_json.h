@@ -1,42 +1,27 @@
 #pragma once
 
+// How `stickrep-console echo` shows a sample. The JSON form itself is derived from the IDL at
+// build time (msgs_json.h: to_json/from_json for every type, EnumName for every enum); this is
+// only what echo shows differently.
+
 #include <nlohmann/json.hpp>
 
-#include "basePubSubTypes.h"
-#include "localizationPubSubTypes.h"
-#include "missionPubSubTypes.h"
-#include "perceptionPubSubTypes.h"
-#include "sensorsPubSubTypes.h"
-#include "systemPubSubTypes.h"
+#include <string>
+
+#include "msgs_json.h"
 
 namespace stickrep::console {
 
-// One JSON object per StickRep sample, for `stickrep-console echo`. Images print their
-// shape and a checksum instead of the pixels.
-nlohmann::json ToJson(const msgs::SonarEcho& m);
-nlohmann::json ToJson(const msgs::SonarScan& m);
-nlohmann::json ToJson(const msgs::Image& m);
-nlohmann::json ToJson(const msgs::WheelCommand& m);
-nlohmann::json ToJson(const msgs::EncoderReading& m);
-nlohmann::json ToJson(const msgs::MotionCommand& m);
-nlohmann::json ToJson(const msgs::MotionState& m);
-nlohmann::json ToJson(const msgs::Odometry& m);
-nlohmann::json ToJson(const msgs::LandmarkObservation& m);
-nlohmann::json ToJson(const msgs::LocalizationPose& m);
-nlohmann::json ToJson(const msgs::PoseHypotheses& m);
-nlohmann::json ToJson(const msgs::StickRepMap& m);
-nlohmann::json ToJson(const msgs::MissionGoal& m);
-nlohmann::json ToJson(const msgs::MissionStatus& m);
-nlohmann::json ToJson(const msgs::MissionGoalResult& m);
-nlohmann::json ToJson(const msgs::ComponentStatus& m);
-nlohmann::json ToJson(const msgs::GroundTruth& m);
+// The echo form of `sample`, the JSON form of a `type_name` ("stickrep::msgs::Image"): the same,
+// except that each sequence<octet> (an image's pixels) is shown as its length and its 64-bit
+// FNV-1a hash rather than its bytes: a struct member `data` as "data_bytes" and "data_fnv1a",
+// an element of a sequence or an array as {"bytes": ..., "fnv1a": ...}.
+nlohmann::json EchoForm(const std::string& type_name, nlohmann::json sample);
 
-// Enum names as the IDL spells them.
-const char* Name(msgs::DoorClass c);
-const char* Name(msgs::LocalizationStatus s);
-const char* Name(msgs::MissionState s);
-const char* Name(msgs::ComponentState s);
-const char* Name(msgs::MotionMode m);
-const char* Name(msgs::SonarReadingState s);
+// The echo form of a sample of any IDL struct.
+template <typename T>
+nlohmann::json ToJson(const T& sample) {
+  return EchoForm(idl::TypeName<T>::value, nlohmann::json(sample));
+}
 
 }  // namespace stickrep::console

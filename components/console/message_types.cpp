@@ -6,13 +6,19 @@
 #include <cstring>
 #include <new>
 
-#include "console/message_json.h"
+#include "basePubSubTypes.h"
+#include "localizationPubSubTypes.h"
+#include "missionPubSubTypes.h"
+#include "msgs_json.h"
+#include "perceptionPubSubTypes.h"
+#include "sensorsPubSubTypes.h"
+#include "systemPubSubTypes.h"
 
 namespace stickrep::console {
 
 namespace {
 
-// Deserializes a raw payload with the type's own support class, then prints it.
+// Deserializes a raw payload with the type's own support class; its JSON form (msgs_json.h).
 template <typename PubSubType>
 nlohmann::json Decode(const std::uint8_t* data, std::size_t size) {
   if (size < 4) throw PayloadError("payload of " + std::to_string(size) + " bytes: no CDR header");
@@ -30,7 +36,7 @@ nlohmann::json Decode(const std::uint8_t* data, std::size_t size) {
     throw PayloadError(std::string("CDR: ") + e.what());
   }
   if (!ok) throw PayloadError(std::string("the payload does not deserialize to ") + support.getName());
-  return ToJson(sample);
+  return nlohmann::json(sample);
 }
 
 template <typename PubSubType>
