@@ -137,11 +137,50 @@ Window Measure(const std::vector<Arrival>& all, int64_t from_ns, int64_t to_ns) 
   return w;
 }
 
+// Runs `stickrep-console ARGS` on the test's domain to its end (bounded); exit code, output.
+std::pair<int, std::string> RunConsole(const std::string& system, std::vector<std::string> args) {
+  std::vector<std::string> argv{BinPath("stickrep-console"), "--domain", std::to_string(kDomainId),
+                                "--system", system};
+  argv.insert(argv.end(), args.begin(), args.end());
+  launch::ChildProcess console("console", argv);
+  if (!console.WaitExit(60.0)) {
+    console.Signal(SIGKILL);
+    console.WaitExit(5.0);
+    return {-1, "did not end: " + console.output()};
+  }
+  console.ReadLines(/*flush_partial=*/true);
+  return {console.exit_code(), console.output()};
+}
+
+// Every verb once against the running stack (the pose is recovered by now or soon).
+void ExpectEveryVerbAnswers(const std::string& system) {
+  const auto expect = [&](std::vector<std::string> args, const std::string& shows) {
+    std::string line;
+    for (const auto& a : args) line += a + " ";
+    const auto [rc, out] = RunConsole(system, args);
+    EXPECT_EQ(rc, 0) << line << "\n" << out;
+    EXPECT_NE(out.find(shows), std::string::npos) << line << "\n" << out;
+  };
+  expect({"list"}, "robot/motion/command");
+  expect({"info", "robot/motion/command"}, "stickrep-executive");
+  expect({"echo", "robot/odometry", "--once", "--timeout", "10"}, "\"distance_in\"");
+  expect({"echo", "system/status", "--once", "--field", "state", "--timeout", "10"}, "COMPONENT_");
+  expect({"hz", "robot/sonar", "--duration", "2.5"}, "robot/sonar: average rate");
+  expect({"delay", "robot/camera/image", "--duration", "2.5"}, "source timestamp to reception");
+  expect({"bw", "--duration", "2"}, "robot/camera/image");
+  expect({"status", "--once"}, "localizer");
+  expect({"pose", "--once", "--json", "--timeout", "60"}, "\"wing1_corridor\"");
+  // The goal's answer is structured; a goal before the pose is refused with a reason.
+  const auto [goal_rc, goal] = RunConsole(system, {"goal", "wing1_corridor/50", "--timeout", "20"});
+  EXPECT_NE(goal.find("goal 'console' (wing1_corridor/50): "), std::string::npos) << goal;
+  EXPECT_TRUE(goal_rc == 0 || goal.find("refused") != std::string::npos) << goal;
+}
+
 // The stack on the small map at 1x real time; this test reads seven of its streams while a
 // console reading every topic (`bw`) is stopped with SIGSTOP for 10 s. A writer that waited
 // for the stopped reader (a full history, a full shared-memory port) would show as a rate
 // drop or a delay during the stop.
-TEST_F(ConsoleStackTest, AConsoleStoppedFor10sSlowsNoStreamOfTheStack) {
+TEST_F(ConsoleStackTest, AConsoleStoppedFor10sSlowsNoStreamAndEveryVerbAnswers) {
   const std::vector<std::string> probed = {"robot/camera/image", "robot/sonar",
                                            "robot/odometry",     "robot/motion/command",
                                            "robot/motion/state", "system/status",
@@ -232,6 +271,7 @@ TEST_F(ConsoleStackTest, AConsoleStoppedFor10sSlowsNoStreamOfTheStack) {
   console.Signal(SIGINT);
   ASSERT_TRUE(console.WaitExit(30.0)) << Outputs();
   EXPECT_EQ(console.exit_code(), 0) << Outputs();
+  ExpectEveryVerbAnswers(system);
   StopAllAndExpectCleanExit();
 }
 
