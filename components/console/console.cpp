@@ -480,42 +480,75 @@ namespace {
 // liveliness of every AUTOMATIC writer of a reader while any one of them is alive
 // (eProsima/Fast-DDS#4373, fixed after 2.9), so one dead heartbeat writer among seven goes
 // unreported by DDS itself.
-std::vector<TimelinessWatch> WatchTimedTopics(Session& s, double watch_s) {
-  const auto endpoints = s.listener->Endpoints();
+// One timed topic under watch: the reader, and how long each writer stayed silent.
+struct WatchedTopic {
   struct Silence {
     int64_t last_ns = 0;
     int64_t longest_ns = 0;
   };
-  struct Watched {
-    TimelinessWatch watch;
-    std::vector<std::string> writer_guids;
-    std::map<std::string, Silence> silence;  // by writer GUID
-    std::unique_ptr<runtime::RawReader> reader;
-  };
-  std::vector<std::unique_ptr<Watched>> watched;
+  TimelinessWatch watch;
+  std::vector<std::string> writer_guids;
+  std::map<std::string, Silence> silence;  // by writer GUID
+  std::unique_ptr<runtime::RawReader> reader;
+};
+
+// A reader of `t` with its catalogued QoS when that QoS has a deadline or a lease; nullptr
+// for any other topic.
+std::unique_ptr<WatchedTopic> WatchTopic(Session& s, runtime::Executor& ex,
+                                         const runtime::TopicSummary& t,
+                                         const std::vector<runtime::DiscoveredEndpoint>& endpoints,
+                                         double watch_s, int64_t begin_ns) {
+  const MessageType* type = FindMessageType(t.type);
+  if (t.writers == 0 || type == nullptr || !s.participant->catalog().HasTopic(t.topic)) {
+    return nullptr;
+  }
+  const runtime::QosProfile qos = s.participant->catalog().ForTopic(t.topic);
+  if (qos.deadline_s <= 0.0 && qos.liveliness_lease_s <= 0.0) return nullptr;
+  auto w = std::make_unique<WatchedTopic>();
+  w->watch = {t.topic, qos.deadline_s, qos.liveliness_lease_s, watch_s, {}, 0, {}, 0};
+  for (const auto& e : endpoints) {
+    if (e.topic != t.topic || !e.is_writer) continue;
+    w->watch.writers.push_back(e.participant.empty() ? e.guid : e.participant);
+    w->writer_guids.push_back(e.guid);
+  }
+  WatchedTopic* into = w.get();
+  w->reader = std::make_unique<runtime::RawReader>(
+      *s.participant, ex, t.topic, type->make_support, qos,
+      [into, begin_ns](const runtime::RawSample&, const runtime::RawSampleInfo& i) {
+        WatchedTopic::Silence& q = into->silence[i.writer_guid];
+        q.longest_ns = std::max(q.longest_ns, i.reception_ns - (q.last_ns ? q.last_ns : begin_ns));
+        q.last_ns = i.reception_ns;
+      });
+  return w;
+}
+
+// What DDS reported, and the writers silent for longer than the lease, by process name.
+TimelinessWatch Conclude(WatchedTopic& w, int64_t begin_ns, int64_t end_ns,
+                         const std::function<std::string(const std::string&)>& name_of) {
+  TimelinessWatch t = w.watch;
+  t.deadlines_missed = w.reader->deadlines_missed();
+  t.alive_writers_at_end = w.reader->alive_writers();
+  for (const std::string& guid : w.reader->writers_lost()) t.writers_lost.push_back(name_of(guid));
+  const int64_t lease_ns = static_cast<int64_t>(t.lease_s * 1e9);
+  for (const std::string& guid : w.writer_guids) {
+    const WatchedTopic::Silence q = w.silence[guid];
+    const int64_t longest = std::max(q.longest_ns, end_ns - (q.last_ns ? q.last_ns : begin_ns));
+    const std::string name = name_of(guid);
+    if (lease_ns > 0 && longest > lease_ns &&
+        std::find(t.writers_lost.begin(), t.writers_lost.end(), name) == t.writers_lost.end()) {
+      t.writers_lost.push_back(name);
+    }
+  }
+  return t;
+}
+
+std::vector<TimelinessWatch> WatchTimedTopics(Session& s, double watch_s) {
+  const auto endpoints = s.listener->Endpoints();
   runtime::Executor ex;
   const int64_t begin_ns = runtime::WallClockNowNs();
+  std::vector<std::unique_ptr<WatchedTopic>> watched;
   for (const auto& t : runtime::Summarise(endpoints)) {
-    const MessageType* type = FindMessageType(t.type);
-    if (t.writers == 0 || type == nullptr || !s.participant->catalog().HasTopic(t.topic)) continue;
-    const runtime::QosProfile qos = s.participant->catalog().ForTopic(t.topic);
-    if (qos.deadline_s <= 0.0 && qos.liveliness_lease_s <= 0.0) continue;
-    auto w = std::make_unique<Watched>();
-    w->watch = {t.topic, qos.deadline_s, qos.liveliness_lease_s, watch_s, {}, 0, {}, 0};
-    for (const auto& e : endpoints) {
-      if (e.topic != t.topic || !e.is_writer) continue;
-      w->watch.writers.push_back(e.participant.empty() ? e.guid : e.participant);
-      w->writer_guids.push_back(e.guid);
-    }
-    Watched* into = w.get();
-    w->reader = std::make_unique<runtime::RawReader>(
-        *s.participant, ex, t.topic, type->make_support, qos,
-        [into, begin_ns](const runtime::RawSample&, const runtime::RawSampleInfo& i) {
-          Silence& q = into->silence[i.writer_guid];
-          q.longest_ns = std::max(q.longest_ns, i.reception_ns - (q.last_ns ? q.last_ns : begin_ns));
-          q.last_ns = i.reception_ns;
-        });
-    watched.push_back(std::move(w));
+    if (auto w = WatchTopic(s, ex, t, endpoints, watch_s, begin_ns)) watched.push_back(std::move(w));
   }
   if (watched.empty()) return {};
   ex.Spin(runtime::KeepRunning(),
@@ -530,23 +563,7 @@ std::vector<TimelinessWatch> WatchTimedTopics(Session& s, double watch_s) {
     return it == names.end() || it->second.empty() ? guid : it->second;
   };
   std::vector<TimelinessWatch> out;
-  for (auto& w : watched) {
-    TimelinessWatch& t = w->watch;
-    t.deadlines_missed = w->reader->deadlines_missed();
-    t.alive_writers_at_end = w->reader->alive_writers();
-    for (const std::string& guid : w->reader->writers_lost()) t.writers_lost.push_back(name_of(guid));
-    const int64_t lease_ns = static_cast<int64_t>(t.lease_s * 1e9);
-    for (const std::string& guid : w->writer_guids) {
-      const Silence q = w->silence[guid];
-      const int64_t longest = std::max(q.longest_ns, end_ns - (q.last_ns ? q.last_ns : begin_ns));
-      const std::string name = name_of(guid);
-      if (lease_ns > 0 && longest > lease_ns &&
-          std::find(t.writers_lost.begin(), t.writers_lost.end(), name) == t.writers_lost.end()) {
-        t.writers_lost.push_back(name);
-      }
-    }
-    out.push_back(std::move(t));
-  }
+  for (auto& w : watched) out.push_back(Conclude(*w, begin_ns, end_ns, name_of));
   return out;
 }
 

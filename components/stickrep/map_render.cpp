@@ -18,6 +18,19 @@ const cv::Scalar kWallColour(60, 60, 60);
 const cv::Scalar kOtherColour(200, 0, 255);
 const cv::Scalar kJoinColour(150, 150, 150);
 
+// A pose at pixel p: a dot, a 32 px arrow along the heading (image rows grow downwards) and
+// the label right of the dot, or left of it where the image ends.
+void DrawPose(cv::Mat& img, const cv::Point& p, const PoseOverlay& pose) {
+  const cv::Point tip(p.x + static_cast<int>(std::lround(32.0 * std::cos(pose.heading_rad))),
+                      p.y - static_cast<int>(std::lround(32.0 * std::sin(pose.heading_rad))));
+  cv::circle(img, p, 6, cv::Scalar(0, 0, 0), cv::FILLED, cv::LINE_AA);
+  cv::arrowedLine(img, p, tip, cv::Scalar(0, 0, 0), 3, cv::LINE_AA, 0, 0.35);
+  const int label_px = cv::getTextSize(pose.label, cv::FONT_HERSHEY_SIMPLEX, 0.5, 1, nullptr).width;
+  const int label_x = p.x + 10 + label_px < img.cols ? p.x + 10 : p.x - 10 - label_px;
+  cv::putText(img, pose.label, {label_x, p.y - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+}
+
 }  // namespace
 
 void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& options) {
@@ -94,20 +107,7 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
     cv::putText(img, m.label, {p.x + 10, p.y - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
                 cv::Scalar(0, 100, 0), 1, cv::LINE_AA);
   }
-  for (const PoseOverlay& pose : options.poses) {
-    const cv::Point p = px_at(pose.x_in, pose.y_in);
-    // A 32 px arrow; image rows grow downwards.
-    const cv::Point tip(p.x + static_cast<int>(std::lround(32.0 * std::cos(pose.heading_rad))),
-                        p.y - static_cast<int>(std::lround(32.0 * std::sin(pose.heading_rad))));
-    cv::circle(img, p, 6, cv::Scalar(0, 0, 0), cv::FILLED, cv::LINE_AA);
-    cv::arrowedLine(img, p, tip, cv::Scalar(0, 0, 0), 3, cv::LINE_AA, 0, 0.35);
-    // Right of the dot, or left of it where the image ends.
-    const int label_px =
-        cv::getTextSize(pose.label, cv::FONT_HERSHEY_SIMPLEX, 0.5, 1, nullptr).width;
-    const int label_x = p.x + 10 + label_px < img.cols ? p.x + 10 : p.x - 10 - label_px;
-    cv::putText(img, pose.label, {label_x, p.y - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
-                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  }
+  for (const PoseOverlay& pose : options.poses) DrawPose(img, px_at(pose.x_in, pose.y_in), pose);
   // Legend and scale bar.
   int x = margin;
   const int y = height - legend / 2;
