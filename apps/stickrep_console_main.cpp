@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bw->add_option("--duration", o.timeout_s, "seconds to measure (default 10)")
       ->check(CLI::PositiveNumber);
+  bw->add_flag("--json", o.json, "one JSON object instead of the table");
   CLI::App* goal = app.add_subcommand(
       "goal", "send a goal on mission/goal and print the executive's answer");
   std::string target, goal_id = "console";

@@ -83,6 +83,39 @@ DomainSession JoinDomain(const std::string& system_file, int domain_id,
   return s;
 }
 
+namespace {
+
+// `bw`'s table (or one JSON object): samples, rate, mean size and bytes/s of every topic.
+void PrintBandwidth(const std::map<std::string, Traffic>& traffic, double window_s, bool json,
+                    std::ostream& out) {
+  double total = 0.0;
+  nlohmann::json topics = nlohmann::json::array();
+  if (!json) {
+    fmt::print(out, "{:<26} {:>8} {:>8} {:>12} {:>12}   over {:.3g} s\n", "TOPIC", "SAMPLES", "HZ",
+               "MEAN BYTES", "BYTES/S", window_s);
+  }
+  for (const auto& [topic, t] : traffic) {
+    const double rate = t.bytes / window_s;
+    const double mean = t.samples ? double(t.bytes) / t.samples : 0.0;
+    total += rate;
+    topics.push_back({{"topic", topic}, {"samples", t.samples}, {"rate_hz", t.samples / window_s},
+                      {"mean_bytes", mean}, {"bytes_per_s", rate}});
+    if (!json) {
+      fmt::print(out, "{:<26} {:>8} {:>8.1f} {:>12.0f} {:>12.0f}\n", topic, t.samples,
+                 t.samples / window_s, mean, rate);
+    }
+  }
+  if (json) {
+    out << nlohmann::json{{"window_s", window_s}, {"topics", topics}, {"bytes_per_s", total}}.dump()
+        << '\n';
+    return;
+  }
+  fmt::print(out, "{:<26} {:>8} {:>8} {:>12} {:>12.0f}   (serialized payload, no RTPS/UDP "
+             "headers)\n", "total", "", "", "", total);
+}
+
+}  // namespace
+
 int MeasureBandwidth(const ConsoleOptions& o, std::ostream& out) {
   Session s = Join(o);
   runtime::Executor ex;
@@ -102,22 +135,15 @@ int MeasureBandwidth(const ConsoleOptions& o, std::ostream& out) {
                                 counted.bytes += m.data.size();
                               }));
   }
-  const double window_s = o.timeout_s > 0.0 ? o.timeout_s : 10.0;
-  ex.Spin(runtime::KeepRunning(), runtime::Executor::Clock::now() +
-                                      std::chrono::duration_cast<runtime::Executor::Clock::duration>(
-                                          std::chrono::duration<double>(window_s)));
+  const auto begin = runtime::Executor::Clock::now();
+  ex.Spin(runtime::KeepRunning(),
+          begin + std::chrono::duration_cast<runtime::Executor::Clock::duration>(
+                      std::chrono::duration<double>(o.timeout_s > 0.0 ? o.timeout_s : 10.0)));
   readers.clear();
-  fmt::print(out, "{:<26} {:>8} {:>8} {:>12} {:>12}   over {:g} s\n", "TOPIC", "SAMPLES", "HZ",
-             "MEAN BYTES", "BYTES/S", window_s);
-  double total = 0.0;
-  for (const auto& [topic, t] : traffic) {
-    const double rate = t.bytes / window_s;
-    total += rate;
-    fmt::print(out, "{:<26} {:>8} {:>8.1f} {:>12.0f} {:>12.0f}\n", topic, t.samples,
-               t.samples / window_s, t.samples ? double(t.bytes) / t.samples : 0.0, rate);
-  }
-  fmt::print(out, "{:<26} {:>8} {:>8} {:>12} {:>12.0f}   (serialized payload, no RTPS/UDP "
-             "headers)\n", "total", "", "", "", total);
+  // The time really measured (Ctrl-C ends the window early).
+  const double window_s = std::max(
+      1e-3, std::chrono::duration<double>(runtime::Executor::Clock::now() - begin).count());
+  PrintBandwidth(traffic, window_s, o.json, out);
   return 0;
 }
 
