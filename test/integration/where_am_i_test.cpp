@@ -36,7 +36,7 @@ class WhereAmITest : public ProcessFixture {
                     const std::map<std::string, std::string>& robot) {
     std::map<std::string, std::string> keys = {{"real_time_factor", kRealTimeFactor},
                                                {"summary_png", "\"\""}};
-    keys.insert(robot.begin(), robot.end());
+    for (const auto& [key, value] : robot) keys[key] = value;  // the test's own keys win
     Start("stickrep-virtual-robot",
           {"--system", system, "--config",
            WriteTempFile(name + "_vr.yaml", ConfigWith("virtual_robot.yaml", keys))});
@@ -180,7 +180,10 @@ TEST_F(RealBuildingTest, TeachingBuildingStartRecoversTheTruePose) {
       ConfigWith("system.yaml", {{"qos_file", ConfigPath("qos.yaml")},
                                  {"robot_file", ConfigPath("robot.yaml")},
                                  {"map_file", STICKREP_SOURCE_DIR "/maps/teaching_building_1f.yaml"}}));
-  StartStackOn(system, "teaching", {{"seed", "32"}, {"ring_id", "main_corridor"}});
+  // Real time: at 3x, one CI run in three turned the other way at the first junction and
+  // ended 4 edges off after 157 s; the processes then have the pace they have on the robot.
+  StartStackOn(system, "teaching",
+               {{"seed", "32"}, {"ring_id", "main_corridor"}, {"real_time_factor", "1"}});
   ASSERT_TRUE(SpinUntil([&] { return localized.has_value() && at_pose.has_value(); }, 240.0))
       << Outputs();
   EXPECT_TRUE(Matches(localized->best(), *at_pose, at_pose->forward_in_ring(), kRingEdges))
