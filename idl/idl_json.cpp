@@ -11,43 +11,6 @@ namespace stickrep::idl {
 
 namespace {
 
-const char* BasicSpelling(Kind kind) {
-  switch (kind) {
-    case Kind::kBoolean:
-      return "boolean";
-    case Kind::kOctet:
-      return "octet";
-    case Kind::kChar:
-      return "char";
-    case Kind::kShort:
-      return "short";
-    case Kind::kUnsignedShort:
-      return "unsigned short";
-    case Kind::kLong:
-      return "long";
-    case Kind::kUnsignedLong:
-      return "unsigned long";
-    case Kind::kLongLong:
-      return "long long";
-    case Kind::kUnsignedLongLong:
-      return "unsigned long long";
-    case Kind::kFloat:
-      return "float";
-    case Kind::kDouble:
-      return "double";
-    case Kind::kString:
-      return "string";
-    case Kind::kEnum:
-      return "enum";
-    case Kind::kStruct:
-      return "struct";
-    case Kind::kSequence:
-      return "sequence";
-    case Kind::kArray:
-      return "array";
-  }
-  return "?";
-}
 
 constexpr char kBase64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
@@ -66,7 +29,7 @@ int Base64Value(char c) {
 Type BasicType(Kind kind) {
   Type t;
   t.kind = kind;
-  t.idl = BasicSpelling(kind);
+  t.idl = KindSpelling(kind);
   return t;
 }
 

@@ -33,6 +33,10 @@ enum class Kind {
   kArray,
 };
 
+// A kind as IDL spells it: "unsigned long", "string", ... ("enum", "struct", "sequence",
+// "array" for the constructed kinds). Shared by the generator and the type description.
+const char* KindSpelling(Kind kind);
+
 // The type of a struct member (or of a sequence's or an array's elements).
 struct Type {
   Kind kind = Kind::kBoolean;

@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "idl_json.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -160,24 +162,7 @@ std::vector<Token> Lex(const std::string& file, const std::string& text) {
 // ---------------------------------------------------------------------------------------------
 // The model: what the files define
 
-enum class Kind {
-  kBoolean,
-  kOctet,
-  kChar,
-  kShort,
-  kUnsignedShort,
-  kLong,
-  kUnsignedLong,
-  kLongLong,
-  kUnsignedLongLong,
-  kFloat,
-  kDouble,
-  kString,
-  kEnum,
-  kStruct,
-  kSequence,
-  kArray,
-};
+using stickrep::idl::Kind;
 
 struct TypeNode {
   Kind kind = Kind::kBoolean;
@@ -620,28 +605,6 @@ std::string KindName(Kind k) {
 // As IDL spells the type (with scoped names), for error messages.
 std::string Spell(const TypeNode& t) {
   switch (t.kind) {
-    case Kind::kBoolean:
-      return "boolean";
-    case Kind::kOctet:
-      return "octet";
-    case Kind::kChar:
-      return "char";
-    case Kind::kShort:
-      return "short";
-    case Kind::kUnsignedShort:
-      return "unsigned short";
-    case Kind::kLong:
-      return "long";
-    case Kind::kUnsignedLong:
-      return "unsigned long";
-    case Kind::kLongLong:
-      return "long long";
-    case Kind::kUnsignedLongLong:
-      return "unsigned long long";
-    case Kind::kFloat:
-      return "float";
-    case Kind::kDouble:
-      return "double";
     case Kind::kString:
       return t.bound ? "string<" + std::to_string(t.bound) + ">" : "string";
     case Kind::kEnum:
@@ -655,8 +618,9 @@ std::string Spell(const TypeNode& t) {
       const std::size_t dims = t.element->kind == Kind::kArray ? e.find('[') : e.size();
       return e.insert(dims, "[" + std::to_string(t.bound) + "]");
     }
+    default:  // the basic kinds
+      return stickrep::idl::KindSpelling(t.kind);
   }
-  return "";
 }
 
 // The C++ type fastddsgen gives a member of this type.
