@@ -5,10 +5,15 @@
 // sense the same edge sequence.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <iterator>
 #include <optional>
 #include <regex>
+#include <sstream>
+#include <vector>
 
 #include "integration/process_fixture.h"
 #include "localizationPubSubTypes.h"
@@ -33,6 +38,33 @@ struct Pose {
 
 std::ostream& operator<<(std::ostream& out, const Pose& p) {
   return out << "ring '" << p.ring << "' edge " << p.edge << (p.forward ? " forward" : " backward");
+}
+
+// Two sensed sequences ("wall:129 door36 wall:102 ...") agree: every complete edge is the
+// same, and the partial first edge, which runs from the localizer's first odometry sample,
+// is of the same kind and within `first_edge_tol_in`. Where that first sample falls depends
+// on when locomotion's odometry writer matched the localizer's reader: discovery between two
+// processes the test does not see (one CI run lost 8 in of a 129 in first wall at rate 1).
+::testing::AssertionResult SensedAlike(const std::string& a, const std::string& b,
+                                       double first_edge_tol_in) {
+  std::istringstream sa(a), sb(b);
+  std::vector<std::string> ta{std::istream_iterator<std::string>(sa), {}};
+  std::vector<std::string> tb{std::istream_iterator<std::string>(sb), {}};
+  const auto fail = [&] {
+    return ::testing::AssertionFailure() << "\"" << a << "\" vs \"" << b << "\"";
+  };
+  if (ta.empty() || ta.size() != tb.size()) return fail();
+  if (!std::equal(ta.begin() + 1, ta.end(), tb.begin() + 1)) return fail();
+  const auto split = [](const std::string& t) {
+    const auto colon = t.find(':');
+    return colon == std::string::npos
+               ? std::make_pair(t, 0.0)
+               : std::make_pair(t.substr(0, colon), std::stod(t.substr(colon + 1)));
+  };
+  const auto [kind_a, len_a] = split(ta.front());
+  const auto [kind_b, len_b] = split(tb.front());
+  if (kind_a != kind_b || std::abs(len_a - len_b) > first_edge_tol_in) return fail();
+  return ::testing::AssertionSuccess();
 }
 
 class ReplayTest : public ProcessFixture {
@@ -91,12 +123,12 @@ class ReplayTest : public ProcessFixture {
   std::pair<Pose, std::string> RecordLiveRun() {
     Start("stickrep-virtual-robot",
           {"--system", system_, "--config",
-           WriteTempFile("replay_vr.yaml",
-                         ConfigWith("virtual_robot.yaml", {{"real_time_factor", "2"},
-                                                           {"seed", "2"},
-                                                           {"summary_png", "\"\""}}))});
-    launch::ChildProcess& recorder =
-        Start("stickrep-record", {"--system", system_, "-o", recording_, "--topics", kRecordedTopics});
+           WriteTempFile(
+               "replay_vr.yaml",
+               ConfigWith("virtual_robot.yaml",
+                          {{"real_time_factor", "2"}, {"seed", "2"}, {"summary_png", "\"\""}}))});
+    launch::ChildProcess& recorder = Start(
+        "stickrep-record", {"--system", system_, "-o", recording_, "--topics", kRecordedTopics});
     // The recorder subscribed and matched the virtual robot before anything moves.
     EXPECT_TRUE(SpinUntil(
         [&] {
@@ -140,9 +172,9 @@ class ReplayTest : public ProcessFixture {
     // executive has heard every process active, so the replay starts into a connected
     // pipeline.
     const std::map<std::string, std::pair<int, int>> wanted = {
-        {"device/camera/frame", {0, 1}}, {"device/sonar/echo", {0, 1}},
+        {"device/camera/frame", {0, 1}},  {"device/sonar/echo", {0, 1}},
         {"device/base/encoders", {0, 1}}, {"robot/sonar", {1, 3}},
-        {"robot/camera/image", {1, 1}},  {"robot/odometry", {1, 3}},
+        {"robot/camera/image", {1, 1}},   {"robot/odometry", {1, 3}},
         {"perception/landmark", {1, 1}}};
     EXPECT_TRUE(SpinUntil(
         [&] {
@@ -159,8 +191,8 @@ class ReplayTest : public ProcessFixture {
         20.0))
         << Outputs();
     launch::ChildProcess& replay =
-        Start("stickrep-replay", {"--system", system_, recording_, "--rate", rate,
-                                  "--topics", kRecordedTopics, "--wait", "2"});
+        Start("stickrep-replay", {"--system", system_, recording_, "--rate", rate, "--topics",
+                                  kRecordedTopics, "--wait", "2"});
     EXPECT_TRUE(SpinUntil([&] { return pose_.has_value(); }, 150.0)) << Outputs();
     const std::string sensed = SensedSequence(*pipeline["stickrep-localizer"]);
     EXPECT_TRUE(SpinUntil([&] { return replay.Exited(); }, 120.0)) << replay.output();
@@ -193,11 +225,11 @@ TEST_F(ReplayTest, AReplayedRunRecoversTheLivePoseAtRates1And4AndSensesAlike) {
   const auto [pose4b, sensed4b] = Replay("4");
   EXPECT_EQ(pose4b, live_pose);
   EXPECT_FALSE(sensed1.empty());
-  EXPECT_EQ(sensed1, sensed4);
-  EXPECT_EQ(sensed4, sensed4b);
-  std::cout << "rate 1: " << pose1 << "; sensed " << sensed1 << "\nrate 4: " << pose4
-            << "; sensed " << sensed4 << "\nrate 4 again: " << pose4b << "; sensed " << sensed4b
-            << "\n";
+  // At 16 in/s, 24 in is 1.5 s of travel missed before the localizer heard odometry.
+  EXPECT_TRUE(SensedAlike(sensed1, sensed4, 24.0));
+  EXPECT_TRUE(SensedAlike(sensed4, sensed4b, 24.0));
+  std::cout << "rate 1: " << pose1 << "; sensed " << sensed1 << "\nrate 4: " << pose4 << "; sensed "
+            << sensed4 << "\nrate 4 again: " << pose4b << "; sensed " << sensed4b << "\n";
 }
 
 }  // namespace

@@ -182,9 +182,15 @@ TEST_F(RealBuildingTest, TeachingBuildingStartRecoversTheTruePose) {
                                  {"map_file", STICKREP_SOURCE_DIR "/maps/teaching_building_1f.yaml"}}));
   // Real time: at 3x, one CI run in three turned the other way at the first junction and
   // ended 4 edges off after 157 s; the processes then have the pace they have on the robot.
+  // Seed 28 (edge 33 + 69.5 in) is a start the in-process run recovers correctly
+  // (`stickrep-whereami --map maps/teaching_building_1f.yaml --ring main_corridor --seed 28
+  // -N 1`): this test asserts the deployed processes do as well, not the floor's accuracy
+  // over many starts (maps/README.md, "Realistic floors"). Seed 32, used before, is a start the
+  // in-process run gets wrong (edge 84 for 88), and CI once did too. Under load the route
+  // varies: 37 s to 196 s to the pose in 4 runs here beside a 2-thread Where-am-I batch.
   StartStackOn(system, "teaching",
-               {{"seed", "32"}, {"ring_id", "main_corridor"}, {"real_time_factor", "1"}});
-  ASSERT_TRUE(SpinUntil([&] { return localized.has_value() && at_pose.has_value(); }, 240.0))
+               {{"seed", "28"}, {"ring_id", "main_corridor"}, {"real_time_factor", "1"}});
+  ASSERT_TRUE(SpinUntil([&] { return localized.has_value() && at_pose.has_value(); }, 420.0))
       << Outputs();
   EXPECT_TRUE(Matches(localized->best(), *at_pose, at_pose->forward_in_ring(), kRingEdges))
       << "localized on ring " << localized->best().ring_id() << " edge "
