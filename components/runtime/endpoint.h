@@ -103,7 +103,10 @@ class Reader : public Drainable {
     reader_ = participant_.CreateDataReader(topic, new PubSubType(), &listener_);
     executor_.Add(this);
   }
-  ~Reader() override { participant_.DeleteDataReader(reader_); }
+  ~Reader() override {
+    executor_.Remove(this);
+    participant_.DeleteDataReader(reader_);
+  }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
 

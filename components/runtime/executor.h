@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -25,6 +26,11 @@ class Executor {
   using Clock = std::chrono::steady_clock;
 
   void Add(Drainable* d) { drainables_.push_back(d); }
+  // Forgets a drainable (its destructor calls this): a reader destroyed while the executor
+  // lives on is never drained again. Called on the thread that spins, like Add.
+  void Remove(Drainable* d) {
+    drainables_.erase(std::remove(drainables_.begin(), drainables_.end(), d), drainables_.end());
+  }
   // Calls `fn` every `period_s`, first after one period.
   void AddTimer(double period_s, std::function<void()> fn);
   // Wakes the executor (thread safe, callable from any thread).

@@ -44,5 +44,19 @@ TEST(ExecutorTest, SpinStopsWhenAskedAndDrainsOnceMore) {
   EXPECT_EQ(d.drains, 1);
 }
 
+TEST(ExecutorTest, ARemovedDrainableIsNeverDrainedAgain) {
+  Executor ex;
+  CountingDrainable kept, removed;
+  ex.Add(&kept);
+  ex.Add(&removed);
+  ex.Notify();
+  ex.SpinOnce(std::chrono::milliseconds(0));
+  ex.Remove(&removed);
+  ex.Notify();
+  ex.SpinOnce(std::chrono::milliseconds(0));
+  EXPECT_EQ(kept.drains, 2);
+  EXPECT_EQ(removed.drains, 1);
+}
+
 }  // namespace
 }  // namespace stickrep::runtime

@@ -46,7 +46,10 @@ RawReader::RawReader(Participant& participant, Executor& executor, const std::st
   executor_.Add(this);
 }
 
-RawReader::~RawReader() { participant_.DeleteDataReader(reader_); }
+RawReader::~RawReader() {
+  executor_.Remove(this);
+  participant_.DeleteDataReader(reader_);
+}
 
 void RawReader::Listener::on_requested_deadline_missed(
     dds::DataReader*, const dds::RequestedDeadlineMissedStatus& s) {
