@@ -27,7 +27,9 @@ std::string WriteTempFile(const std::string& name, const std::string& text) {
 DomainLock::DomainLock(int domain_id) {
   const std::string path =
       ::testing::TempDir() + "/stickrep_domain_" + std::to_string(domain_id) + ".lock";
-  fd_ = open(path.c_str(), O_CREAT | O_RDWR, 0666);
+  // Close-on-exec: the processes a test starts must not inherit the lock, or one left behind
+  // by a killed test would hold the domain for ever.
+  fd_ = open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0666);
   if (fd_ >= 0) flock(fd_, LOCK_EX);
 }
 

@@ -26,6 +26,11 @@ namespace {
 
 constexpr const char* kRecordedTopics =
     "device/sonar/echo,device/camera/frame,device/base/encoders,sim/ground_truth";
+// What the pipeline reads: the replay starts once each has a matched reader (nothing in the
+// pipeline reads sim/ground_truth, so replaying it would make the replay wait its whole
+// --wait and then start into whatever had matched by then).
+constexpr const char* kReplayedTopics =
+    "device/sonar/echo,device/camera/frame,device/base/encoders";
 
 struct Pose {
   std::string ring;
@@ -139,9 +144,20 @@ class ReplayTest : public ProcessFixture {
         },
         20.0))
         << Outputs();
+    // The simulated clock, from the ground truth the recorder records as well.
+    std::int64_t sim_ns = 0;
+    runtime::Reader<msgs::GroundTruthPubSubType> truths(
+        participant(), executor(), "sim/ground_truth",
+        [&](const msgs::GroundTruth& g) { sim_ns = g.header().stamp_ns(); });
     auto pipeline = StartPipeline();
     EXPECT_TRUE(SpinUntil([&] { return pose_.has_value(); }, 150.0)) << Outputs();
     const std::string sensed = SensedSequence(*pipeline["stickrep-localizer"]);
+    // The recording goes on 2 s of simulated time past the pose: a replay at rate 4 is over
+    // in 2 s, and a recording that ends at the very sample that completed the last edge leaves
+    // a replay no margin for a camera frame still in flight when the replayer exits.
+    const std::int64_t pose_sim_ns = sim_ns;
+    EXPECT_TRUE(SpinUntil([&] { return sim_ns > pose_sim_ns + 2'000'000'000; }, 20.0))
+        << Outputs();
     StopAllAndExpectCleanExit();
     recorder.ReadLines(true);
     EXPECT_EQ(recorder.exit_code(), 0) << recorder.output();
@@ -151,7 +167,6 @@ class ReplayTest : public ProcessFixture {
 
   // The recording replayed into the pipeline: the pose and the sequence sensed.
   std::pair<Pose, std::string> Replay(const std::string& rate) {
-    pose_.reset();
     // The previous pipeline has left discovery, so the counts below are the new one's (a
     // replay at rate 4 lasts about 2 s: started into a half-connected pipeline, it is over
     // before the localizer hears it).
@@ -190,15 +205,22 @@ class ReplayTest : public ProcessFixture {
         },
         20.0))
         << Outputs();
+    // Forgotten only now: the previous localizer published LOCALIZED until it stopped, and
+    // those samples were still being dispatched while its pipeline left discovery (one CI
+    // run took such a pose for the replay's and read the new localizer's log too early).
+    // The new localizer cannot be localized before the replay starts.
+    pose_.reset();
     launch::ChildProcess& replay =
         Start("stickrep-replay", {"--system", system_, recording_, "--rate", rate, "--topics",
-                                  kRecordedTopics, "--wait", "2"});
+                                  kReplayedTopics, "--wait", "20"});
     EXPECT_TRUE(SpinUntil([&] { return pose_.has_value(); }, 150.0)) << Outputs();
     const std::string sensed = SensedSequence(*pipeline["stickrep-localizer"]);
     EXPECT_TRUE(SpinUntil([&] { return replay.Exited(); }, 120.0)) << replay.output();
     replay.ReadLines(true);
     EXPECT_EQ(replay.exit_code(), 0) << replay.output();
     EXPECT_NE(replay.output().find("wheel commands ignored"), std::string::npos) << replay.output();
+    EXPECT_EQ(replay.output().find("no reader at the start"), std::string::npos)
+        << replay.output();
     StopAllAndExpectCleanExit();
     return {pose_.value_or(Pose{}), sensed};
   }
