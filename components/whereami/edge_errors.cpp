@@ -138,4 +138,44 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
   return c;
 }
 
+EdgeErrorMeter::EdgeErrorMeter(const map::Ring& view_ring, localizer::EdgeAssembler& assembler,
+                               double skip_in)
+    : view_ring_(view_ring), assembler_(assembler), skip_in_(skip_in) {}
+
+void EdgeErrorMeter::Advance(double odometer_in, double heading_rad, int view_edge) {
+  // Edges are placed between readings too (sightings, corner ranges): what the assembler
+  // holds before this reading is what a reversal in it would forget.
+  if (assembler_.sequence().size() != sequence_.size()) {
+    sequence_ = assembler_.sequence();
+    spans_ = assembler_.spans();
+  }
+  assembler_.Advance(odometer_in, heading_rad);
+  if (assembler_.TakeReversal()) {
+    CompareDirection(sequence_, spans_);
+    truth_.clear();
+    sequence_.clear();
+    spans_.clear();
+    ++directions_;
+  }
+  truth_.push_back({odometer_in, view_edge});
+}
+
+void EdgeErrorMeter::CompareDirection(const std::vector<map::SensedEdge>& sensed,
+                                      const std::vector<localizer::EdgeAssembler::Span>& spans) {
+  if (truth_.empty()) return;
+  const double start = truth_.front().odometer_in;
+  const double end = truth_.back().odometer_in;
+  const double sign = end >= start ? 1.0 : -1.0;
+  // Only the first direction begins with aligning; later ones begin at a reversal, whose
+  // first and last edges CompareWithTruth leaves out as not passed whole.
+  const double skip = directions_ == 1 ? skip_in_ : 0.0;
+  counts_.Add(CompareWithTruth(view_ring_, sensed, spans, truth_, start + sign * skip, end));
+}
+
+EdgeErrorCounts EdgeErrorMeter::Finish() {
+  CompareDirection(assembler_.sequence(), assembler_.spans());
+  truth_.clear();
+  return counts_;
+}
+
 }  // namespace stickrep::whereami

@@ -47,4 +47,35 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
                                  const std::vector<TruthSample>& truth, double from_in,
                                  double to_in);
 
+// Measures one run's assembled edges against the truth, one travel direction at a time. A
+// reversal (a hallway end, a dead-end corridor) restarts the assembly and so forgets the
+// sequence sensed so far (EdgeAssembler::Restart); each direction's sequence is compared
+// with the truth passed during it, before it is forgotten.
+class EdgeErrorMeter {
+ public:
+  // Odometer travel at the start skipped (aligning, the partial first edges).
+  EdgeErrorMeter(const map::Ring& view_ring, localizer::EdgeAssembler& assembler,
+                 double skip_in);
+  // One encoder reading: advances the assembler and records where the optical axis met the
+  // wall (a view edge, or -1).
+  void Advance(double odometer_in, double heading_rad, int view_edge);
+  // The counts over every direction travelled, the one under way included.
+  EdgeErrorCounts Finish();
+  // Travel directions measured (1 + reversals).
+  int directions() const { return directions_; }
+
+ private:
+  void CompareDirection(const std::vector<map::SensedEdge>& sensed,
+                        const std::vector<localizer::EdgeAssembler::Span>& spans);
+
+  const map::Ring& view_ring_;
+  localizer::EdgeAssembler& assembler_;
+  double skip_in_;
+  int directions_ = 1;
+  std::vector<TruthSample> truth_;  // this direction's
+  std::vector<map::SensedEdge> sequence_;  // the assembler's, as of the last reading
+  std::vector<localizer::EdgeAssembler::Span> spans_;
+  EdgeErrorCounts counts_;
+};
+
 }  // namespace stickrep::whereami

@@ -109,9 +109,10 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   const localizer::LocalizerConfig localizer_config =
       localizer::MakeLocalizerConfig(setup.localizer, view.view());
   localizer::Localizer localizer(view.view(), localizer_config);
-  // Measuring: the same assembly as the localizer's, never restarted.
+  // Measuring: the same assembly as the localizer's, never restarted but by reversals.
   localizer::EdgeAssembler assembler(localizer_config.assembler);
-  std::vector<TruthSample> truth_samples;
+  // From 20 ft on: the robot has aligned and the partial first edges are behind.
+  EdgeErrorMeter meter(view.view().ring(ring), assembler, 240.0);
   executive::Executive executive(map, setup.executive.mission);
   for (const std::string& name : setup.executive.mission.required_components) {
     executive.mission().OnComponentActive(name);
@@ -212,11 +213,9 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
       odometer.Update(sim.left_travel_in(), sim.right_travel_in());
       executive.OnOdometer(odometer.distance_in());
       if (measuring) {
-        assembler.Advance(odometer.distance_in(), odometer.pose().heading_rad);
         const virtual_robot::SimTruth truth = sim.Truth();
-        truth_samples.push_back({odometer.distance_in(),
-                                 truth.optical_axis_on_wall ? view.ViewEdge(ring, truth.edge_index)
-                                                            : -1});
+        meter.Advance(odometer.distance_in(), odometer.pose().heading_rad,
+                      truth.optical_axis_on_wall ? view.ViewEdge(ring, truth.edge_index) : -1);
         if (InchesToFeet(truth.distance_in) >= options.measure_ft) {
           result.ended = fmt::format("measured over {:.0f} ft", options.measure_ft);
           break;
@@ -304,14 +303,7 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   const std::vector<map::SensedEdge>& sensed =
       measuring ? assembler.sequence() : localizer.sensed_sequence();
   result.sensed_trace = map::Describe(sensed);
-  if (measuring && !truth_samples.empty()) {
-    // From 20 ft on: the robot has aligned and the partial first edges are behind.
-    const double start = truth_samples.front().odometer_in;
-    const double end = truth_samples.back().odometer_in;
-    const double sign = end >= start ? 1.0 : -1.0;
-    result.errors = CompareWithTruth(view.view().ring(ring), assembler.sequence(), assembler.spans(),
-                                     truth_samples, start + sign * 240.0, end);
-  }
+  if (measuring) result.errors = meter.Finish();
   return result;
 }
 
