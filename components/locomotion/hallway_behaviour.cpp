@@ -26,11 +26,14 @@ constexpr double kObliqueAgreeRad = DegToRad(5.0);
 constexpr double kFlankToleranceIn = 12.0;
 // Once stopped before an obstacle, the base stays put while it is this much farther off.
 constexpr double kObstacleHoldIn = 12.0;
+// A wall seen nearer than the track puts it by more than this is not a recess.
+constexpr double kNearerIn = 2.0;
 
 }  // namespace
 
 void HallwayTracker::Predict(double ds_in, double dtheta_rad) {
   if (!initialised_ || !std::isfinite(ds_in) || !std::isfinite(dtheta_rad)) return;
+  if (recess_travel_in_ >= 0.0) recess_travel_in_ += std::abs(ds_in);
   const double k = ds_in * std::cos(psi_);
   y_ += ds_in * std::sin(psi_ + dtheta_rad / 2.0);
   psi_ = WrapPi(psi_ + dtheta_rad);
@@ -43,27 +46,43 @@ void HallwayTracker::Predict(double ds_in, double dtheta_rad) {
   ppp_ += walk_psi * walk_psi * std::abs(ds_in) + turn * turn;
 }
 
-bool HallwayTracker::UpdateOffset(double offset_in) {
+bool HallwayTracker::Consistent(double offset_in) const {
+  if (!std::isfinite(offset_in)) return false;
+  if (!initialised_) return true;
+  const double v = offset_in - y_;
+  const double s = pyy_ + noise_.offset_sigma_in * noise_.offset_sigma_in;
+  return v * v <= noise_.gate_sigmas * noise_.gate_sigmas * s;
+}
+
+bool HallwayTracker::UpdateOffset(double offset_in, bool recess) {
   if (!std::isfinite(offset_in)) return false;
   const double r = noise_.offset_sigma_in * noise_.offset_sigma_in;
   const double v = offset_in - y_;
   const double s = pyy_ + r;
-  if (initialised_ && v * v > noise_.gate_sigmas * noise_.gate_sigmas * s &&
-      ++rejected_ < noise_.reinit_after) {
-    return false;
+  bool reinit = !initialised_;
+  if (initialised_ && !Consistent(offset_in)) {
+    if (recess) {
+      if (recess_travel_in_ < 0.0) recess_travel_in_ = 0.0;
+      if (recess_travel_in_ < noise_.reinit_recess_in) return false;
+    } else if (++rejected_ < noise_.reinit_after) {
+      return false;
+    }
+    reinit = true;
   }
-  if (!initialised_ || rejected_ >= noise_.reinit_after) {
+  if (reinit) {
     const double p0 = DegToRad(noise_.initial_heading_sigma_deg);
+    if (initialised_) psi_ = 0.0;
     initialised_ = true;
     y_ = offset_in;
-    if (rejected_ >= noise_.reinit_after) psi_ = 0.0;
     pyy_ = r;
     pyp_ = 0.0;
     ppp_ = p0 * p0;
     rejected_ = 0;
+    recess_travel_in_ = -1.0;
     return true;
   }
   rejected_ = 0;
+  recess_travel_in_ = -1.0;
   const double ky = pyy_ / s, kp = pyp_ / s;
   y_ += ky * v;
   psi_ = WrapPi(psi_ + kp * v);
@@ -96,6 +115,7 @@ void HallwayTracker::TurnedOnto(double rad) {
   pyy_ = 1e4;
   pyp_ = 0.0;
   rejected_ = 0;
+  recess_travel_in_ = -1.0;
 }
 
 bool HallwayTracker::offset_known() const {
@@ -153,6 +173,14 @@ const char* ToString(BehaviourState state) {
   return "?";
 }
 
+double ViewPacedSpeedFtps(const HallwayBehaviourConfig& c, double range_in) {
+  if (c.frames_per_door <= 0 || !std::isfinite(range_in)) return kNoObstacle;
+  const double view_in = 2.0 * std::max(0.0, range_in) * std::tan(DegToRad(c.camera_fov_deg) / 2.0);
+  const double margin_in = std::max(0.0, view_in - c.door_in_view_in);
+  return std::max(c.min_view_speed_ftps,
+                  InchesToFeet(margin_in / (c.frames_per_door * c.camera_frame_period_s)));
+}
+
 HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
     : config_(config), follower_(config.follower) {
   const auto& c = config_;
@@ -170,6 +198,11 @@ HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
   require(c.default_hallway_width_in > 0.0, "default_hallway_width_in must be > 0");
   require(c.envelope_offset_in > 0.0 && c.envelope_heading_deg > 0.0,
           "the envelope must be > 0");
+  require(c.frames_per_door >= 0, "frames_per_door must be >= 0");
+  require(c.camera_fov_deg > 0.0 && c.camera_fov_deg < 180.0, "camera_fov_deg must be in (0, 180)");
+  require(c.camera_frame_period_s > 0.0, "camera_frame_period_s must be > 0");
+  require(c.door_in_view_in >= 0.0 && c.min_view_speed_ftps > 0.0,
+          "door_in_view_in must be >= 0 and min_view_speed_ftps > 0");
 }
 
 void HallwayBehaviour::Reset() {
@@ -183,6 +216,7 @@ void HallwayBehaviour::Reset() {
   oblique_scans_ = 0;
   pending_ = TurnKind::kNone;
   pending_rotate_rad_ = 0.0;
+  blocked_ = false;
 }
 
 void HallwayBehaviour::OnScan(const std::vector<SonarRange>& scan, double now_s) {
@@ -194,9 +228,13 @@ void HallwayBehaviour::OnScan(const std::vector<SonarRange>& scan, double now_s)
   if (state_ == BehaviourState::kTurning) return;  // the walls are sideways mid-turn
   const double wall = travel_sign_ > 0 ? estimate_.wall_forward_in : estimate_.wall_backward_in;
   // The width is taken on a plain stretch only: near the end of a hallway a side that opens
-  // leaves the fit with stray echoes from round the corner.
+  // leaves the fit with stray echoes from round the corner; in an open hall one reading
+  // within side_open_range_in (a column, a corner seen edge-on) keeps a side "closed" while
+  // its fitted line lies across the hall, so both lines must lie within that range too.
+  const double side_range = config_.follower.side_open_range_in;
   if (!wall_known_ && !std::isfinite(wall) && !estimate_.left_open && !estimate_.right_open &&
       estimate_.offset_valid && estimate_.left.inliers >= 2 && estimate_.right.inliers >= 2 &&
+      estimate_.left.distance_in <= side_range && estimate_.right.distance_in <= side_range &&
       estimate_.hallway_width_in > 2.0 * config_.follower.stop_distance_in) {
     hallway_width_in_ = estimate_.hallway_width_in;
   }
@@ -236,6 +274,38 @@ void HallwayBehaviour::Report(BehaviourOutput& out) const {
                     std::abs(out.lateral_offset_in) <= config_.envelope_offset_in &&
                     out.heading_valid &&
                     std::abs(out.heading_error_rad) <= DegToRad(config_.envelope_heading_deg);
+}
+
+void HallwayBehaviour::TrackBothWalls(double width_in) {
+  // Both walls give the offset and the heading. Where one of them is set back (a door, an
+  // alcove) or stands out (a pilaster), the scan's offset is an outlier and its heading is
+  // fitted to the same wrong wall; the other wall alone, with the width, still places the
+  // base. A wall neither explains restarts the track only as HallwayTracker says.
+  const double half = width_in / 2.0;
+  const double y = tracker_.offset_in();
+  const WallLine& l = estimate_.left;
+  const WallLine& r = estimate_.right;
+  // One wall alone places the base only on a known track and a measured width.
+  const bool single = tracker_.offset_known() && hallway_width_in_ > 0.0;
+  const bool l_ok = single && l.valid && l.inliers >= 2;
+  const bool r_ok = single && r.valid && r.inliers >= 2;
+  if (estimate_.offset_valid && tracker_.Consistent(estimate_.lateral_offset_in)) {
+    tracker_.UpdateOffset(estimate_.lateral_offset_in);
+    if (estimate_.heading_valid) tracker_.UpdateHeading(estimate_.heading_error_rad);
+    return;
+  }
+  if (l_ok && tracker_.Consistent(half - l.distance_in)) {
+    tracker_.UpdateOffset(half - l.distance_in);
+    return;
+  }
+  if (r_ok && tracker_.Consistent(r.distance_in - half)) {
+    tracker_.UpdateOffset(r.distance_in - half);
+    return;
+  }
+  if (!estimate_.offset_valid) return;
+  const bool recess = (!l_ok || l.distance_in >= half - y - kNearerIn) &&
+                      (!r_ok || r.distance_in >= half + y - kNearerIn);
+  tracker_.UpdateOffset(estimate_.lateral_offset_in, recess);
 }
 
 BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odometry_heading_rad,
@@ -390,6 +460,7 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
     turn_target_rad_ = WrapPi(odometry_heading_rad - heading_error + pending_rotate_rad_);
     last_angular_radps_ = 0.0;
     out.turn_started = true;
+    blocked_ = false;
     out.turn_kind = pending_;
     out.reason = fmt::format("{} {:.0f} in ahead: turning {:+.0f} deg in place", ToString(pending_),
                              wall_in, RadToDeg(pending_rotate_rad_));
@@ -403,6 +474,10 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
     const double margin_in = std::max(0.0, wall_in - stop_at_in);
     speed = std::min(speed, InchesToFeet(std::sqrt(2.0 * FeetToInches(fc.brake_decel_ftps2) * margin_in)));
   }
+  // Paced for the camera at the mapped wall's range: half the hallway, less the offset
+  // toward it (the tracked offset, not one scan's, which a door recess lengthens).
+  speed = std::min(speed, ViewPacedSpeedFtps(config_, width_in / 2.0 -
+                                                          (tracker_.offset_known() ? tracker_.offset_in() : 0.0)));
   // The scan's fit feeds the tracker where both walls are plain. Where one side has opened
   // (a crossing, the hallway just turned out of) the other wall alone places the base,
   // with the width measured before; its stray echoes from round the corner make the heading
@@ -410,19 +485,18 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
   // carries the track.
   if (scan_fresh_ && !std::isfinite(wall_in)) {
     if (!estimate_.left_open && !estimate_.right_open) {
-      // A scan whose offset is an outlier (a pilaster's face, a recess) has its heading
-      // fitted to the same wrong wall: it is not used either.
-      const bool accepted =
-          estimate_.offset_valid && tracker_.UpdateOffset(estimate_.lateral_offset_in);
-      if (accepted && estimate_.heading_valid) tracker_.UpdateHeading(estimate_.heading_error_rad);
+      TrackBothWalls(width_in);
     } else if (estimate_.left_open != estimate_.right_open) {
       // Before any width was measured (a start beside an open hall) the default width
       // places the base: a guess, but one that keeps it off the wall it can see.
       const WallLine& plain = estimate_.left_open ? estimate_.right : estimate_.left;
       if (plain.valid && plain.inliers >= 2) {
-        const double half = (hallway_width_in_ > 0.0 ? hallway_width_in_ : width_in) / 2.0;
-        const bool accepted = tracker_.UpdateOffset(estimate_.left_open ? plain.distance_in - half
-                                                                        : half - plain.distance_in);
+        const double half = width_in / 2.0;
+        const double offset = estimate_.left_open ? plain.distance_in - half : half - plain.distance_in;
+        // The wall seen farther than the track puts it: a recess in it.
+        const double predicted_in = half + (estimate_.left_open ? 1.0 : -1.0) * tracker_.offset_in();
+        const bool accepted =
+            tracker_.UpdateOffset(offset, plain.distance_in >= predicted_in - kNearerIn);
         // With no heading yet, the one wall's is the best there is; otherwise odometry
         // carries it (stray echoes from round a corner bias a one-sided fit).
         if (accepted && !tracker_.heading_known() && estimate_.heading_valid) {
@@ -446,9 +520,36 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
     out.obstacle_stop_started = !was_obstacle;
     state_ = BehaviourState::kObstacle;
     const double free_in = travel_sign_ > 0 ? estimate_.free_forward_in : estimate_.free_backward_in;
+    // One blocked spell lasts until the base has got on by kObstacleHoldIn: a wall met at
+    // an angle (a bend's outer corner, an opening's edge, met with no wall to steer by)
+    // clears for a scan now and then as the base creeps at it, and must not restart the
+    // patience each time. Blocked for obstacle_patience_s, the way ahead is taken for
+    // closed and travel reverses (§6.3 A4), as at a hallway end.
+    if (!blocked_) {
+      blocked_ = true;
+      blocked_since_s_ = now_s;
+      blocked_odometer_in_ = odometer_in;
+    } else if (now_s - blocked_since_s_ >= config_.obstacle_patience_s) {
+      blocked_ = false;
+      travel_sign_ = -travel_sign_;
+      wall_known_ = false;
+      follower_.Reset();
+      last_linear_ftps_ = last_angular_radps_ = 0.0;
+      state_ = BehaviourState::kFollowing;
+      out.linear_ftps = out.angular_radps = 0.0;
+      out.reversed = true;
+      out.turn_kind = TurnKind::kHallwayEnd;
+      out.reason = fmt::format("blocked {:.0f} s by something {:.0f} in {}: travel reversed, now {}",
+                               config_.obstacle_patience_s, free_in,
+                               travel_sign_ > 0 ? "behind" : "ahead",
+                               travel_sign_ > 0 ? "forward" : "backward");
+      Report(out);
+      return out;
+    }
     out.reason = fmt::format("obstacle {:.0f} in {}: stopped until it clears", free_in,
                              travel_sign_ > 0 ? "ahead" : "behind");
   } else {
+    if (blocked_ && std::abs(odometer_in - blocked_odometer_in_) > kObstacleHoldIn) blocked_ = false;
     state_ = BehaviourState::kFollowing;
     if (std::isfinite(wall_in)) {
       out.reason = fmt::format("following; wall {:.0f} in ahead, slowing to stop {:.0f} in from it",

@@ -54,6 +54,11 @@ struct HallwayTrackerNoise {
   // the track restarts (0.8 s of scans: a track gone wrong is not kept long).
   double gate_sigmas = 4.0;
   int reinit_after = 8;
+  // Outliers that put the wall farther than predicted (a door alcove, a recess, a room
+  // opening off the corridor) restart the track only after this much travel: a recess as
+  // long as a corridor is wide is passed on the track, and holding it never brings the base
+  // nearer a wall. (Counted in scans, 0.8 s, a slow base took a long alcove for the wall.)
+  double reinit_recess_in = 96.0;
   // Reported as known below these standard deviations.
   double known_offset_sigma_in = 3.0;
   double known_heading_sigma_deg = 4.0;
@@ -71,14 +76,17 @@ class HallwayTracker {
 
   // The base moved ds_in along its forward axis and turned dtheta_rad (odometry).
   void Predict(double ds_in, double dtheta_rad);
-  // False when the measurement is set aside as an outlier.
-  bool UpdateOffset(double offset_in);
+  // False when the measurement is set aside as an outlier. `recess`: the measurement puts
+  // no wall nearer than the track does (an outlier of that kind is held off longer).
+  bool UpdateOffset(double offset_in, bool recess = false);
+  // Whether a measurement would pass the gate (no side effects).
+  bool Consistent(double offset_in) const;
   void UpdateHeading(double heading_rad);
   // After an in-place turn of `rad` (already predicted from odometry): the hallway's axis
   // turned with the base, so the heading error drops by `rad`; the offset in the new
   // hallway is not known yet.
   void TurnedOnto(double rad);
-  void Reset() { initialised_ = false; rejected_ = 0; }
+  void Reset() { initialised_ = false; rejected_ = 0; recess_travel_in_ = -1.0; }
 
   bool offset_known() const;
   bool heading_known() const;
@@ -91,6 +99,8 @@ class HallwayTracker {
   double y_ = 0.0, psi_ = 0.0;
   double pyy_ = 0.0, pyp_ = 0.0, ppp_ = 0.0;  // covariance
   int rejected_ = 0;
+  // Travel since the first of a run of recess outliers; < 0 outside such a run.
+  double recess_travel_in_ = -1.0;
 };
 
 enum class BehaviourState { kNoScan, kFollowing, kStopping, kTurning, kObstacle };
@@ -119,7 +129,23 @@ struct HallwayBehaviourConfig {
   // The navigation envelope of §6.4.2: within 1 ft of the axis and 7.5° of its direction.
   double envelope_offset_in = 12.0;
   double envelope_heading_deg = 7.5;
+  // Pace in the camera's view. A door is measured from a frame that shows both its jambs
+  // (§4.1), and the camera stares at the mapped wall, so the base moves slowly enough that
+  // the widest single door stays whole in view for `frames_per_door` frames at the wall's
+  // range r: v <= (2 r tan(FOV/2) - door) / (frames_per_door x frame period). At the text's
+  // 60 in from the wall (120 in hallways) that allows more than the LabMate's 2.6 ft/s; at
+  // 44-48 in (88-96 in corridors) about half of it. 0 frames: no pacing.
+  int frames_per_door = 0;
+  double camera_fov_deg = 55.817;    // configs/robot.yaml
+  double camera_frame_period_s = 0.2;  // §6.3
+  double door_in_view_in = 40.0;     // the widest single door class (Table 4.1)
+  // Never slower than this, however near the wall (the base must still get somewhere).
+  double min_view_speed_ftps = 0.5;
 };
+
+// The speed cap of the camera-view pacing above at `range_in` from the mapped wall
+// (unbounded when frames_per_door is 0).
+double ViewPacedSpeedFtps(const HallwayBehaviourConfig& config, double range_in);
 
 // What the behaviour wants from the base this step, and why.
 struct BehaviourOutput {
@@ -167,6 +193,8 @@ class HallwayBehaviour {
 
  private:
   void Report(BehaviourOutput& out) const;
+  // Updates the track from a scan with both walls in range (`width_in`: the hallway's).
+  void TrackBothWalls(double width_in);
   // Whether a wall ahead at wall_in spans the hallway (an end, a corner, a junction) rather
   // than standing in it (an obstacle): judged on the newest scan.
   // `wall_in` is along the travel direction, `normal_rad` the wall's angle from across.
@@ -193,6 +221,10 @@ class HallwayBehaviour {
   double wall_odometer_in_ = 0.0;
   double wall_time_s_ = 0.0;
   double obstacle_since_s_ = 0.0;
+  // A spell of stops for something close ahead (the follower's stop distance).
+  bool blocked_ = false;
+  double blocked_since_s_ = 0.0;
+  double blocked_odometer_in_ = 0.0;
 
   int commanded_sign_ = 0;
   int travel_sign_ = +1;

@@ -108,6 +108,62 @@ TEST(HallwayBehaviourTest, ReportsTheEnvelopeOnceTheTrackIsKnown) {
   EXPECT_FALSE(far.out.in_envelope);
 }
 
+TEST(HallwayBehaviourTest, PacesTheBaseSoTheWidestDoorStaysWholeInViewForTheSetFrames) {
+  HallwayBehaviourConfig c;
+  c.frames_per_door = 3;
+  // 48 in from the wall the 55.8° lens sees 50.8 in: 10.8 in to spare for a 40 in door,
+  // 3.6 in a frame at 5 Hz, 18 in/s.
+  EXPECT_NEAR(ViewPacedSpeedFtps(c, 48.0), InchesToFeet((2.0 * 48.0 * std::tan(DegToRad(55.817 / 2.0)) - 40.0) / 0.6), 1e-9);
+  EXPECT_NEAR(ViewPacedSpeedFtps(c, 48.0), 1.50, 0.01);
+  EXPECT_GT(ViewPacedSpeedFtps(c, 60.0), 2.6);          // the text's 120 in hallways: unpaced
+  EXPECT_EQ(ViewPacedSpeedFtps(c, 30.0), c.min_view_speed_ftps);  // the door never fits
+  c.frames_per_door = 0;
+  EXPECT_TRUE(std::isinf(ViewPacedSpeedFtps(c, 48.0)));
+
+  // Closed loop in a 96 in corridor: the base settles at the paced speed, not the 2.6 ft/s
+  // commanded; in the 120 in hallway it reaches 2.6.
+  c.frames_per_door = 3;
+  Drive narrow(fake::Hallway(48), c);
+  narrow.Until([] { return false; }, 8.0);
+  EXPECT_NEAR(narrow.max_speed, ViewPacedSpeedFtps(c, 48.0), 0.05);
+  Drive wide(fake::Hallway(60), c);
+  wide.Until([] { return false; }, 8.0);
+  EXPECT_NEAR(wide.max_speed, 2.6, 1e-9);
+}
+
+// An 88 in corridor whose camera wall has a door alcove 40 in deep and 72 in long at
+// x = 0..72; with `open_right`, the other side opens into a hall from x = -300 to 300.
+std::vector<Segment> AlcoveCorridor(bool open_right) {
+  std::vector<Segment> w = {{{-1000, 44}, {0, 44}},  {{0, 44}, {0, 84}},     {{0, 84}, {72, 84}},
+                            {{72, 84}, {72, 44}},    {{72, 44}, {1000, 44}}};
+  if (open_right) {
+    w.push_back({{-1000, -44}, {-300, -44}});
+    w.push_back({{300, -44}, {1000, -44}});
+  } else {
+    w.push_back({{-1000, -44}, {1000, -44}});
+  }
+  return w;
+}
+
+TEST(HallwayBehaviourTest, PassesADeepAlcoveOnTheTrackAtASlowPace) {
+  // At 0.9 ft/s (the camera pacing of an 88 in corridor) the alcove lasts 6.7 s of scans:
+  // it is a recess in the wall, not a wall that moved, with the other wall in range or not.
+  for (const bool open_right : {false, true}) {
+    SCOPED_TRACE(open_right ? "the other side open" : "both walls");
+    Drive r(AlcoveCorridor(open_right));
+    double max_y = 0.0;
+    ASSERT_TRUE(r.Until(
+        [&] {
+          if (r.x > -200.0) max_y = std::max(max_y, std::abs(r.y));
+          return r.x > 200.0;
+        },
+        120.0, 0.9));
+    // Half the envelope's 12 in (a fit across the alcove's edge still pulls a little).
+    EXPECT_LE(max_y, 6.0);
+    EXPECT_EQ(r.reversals + r.turns, 0);
+  }
+}
+
 TEST(HallwayBehaviourTest, TurnsLeftAtAConvexCornerOntoTheNewAxis) {
   Drive r(LeftCorner());
   // Done once it has gone 10 ft up the new hallway.
@@ -257,6 +313,32 @@ TEST(HallwayBehaviourTest, WaitsBeforeSomeoneInTheHallwayAndResumesWhenTheyStepA
   EXPECT_EQ(r.out.state, BehaviourState::kFollowing);
 }
 
+TEST(HallwayBehaviourTest, BlockedCloseAheadReversesAfterThePatienceEvenIfTheStopFlickers) {
+  // Something 20 in ahead, inside the stop distance, that the sonar loses for a scan now and
+  // then (a wall met at an angle, an opening's edge): one blocked spell, not a new wait
+  // after every flicker, and the way is taken for closed after the patience.
+  Drive r(fake::Hallway(60));
+  ASSERT_TRUE(r.Until([&] { return r.x > -200.0; }, 30.0));
+  const double front = r.x + 20.0;
+  const Segment thing{{front, -8}, {front, 8}};
+  r.walls.push_back(thing);
+  ASSERT_TRUE(r.Until([&] { return r.out.state == BehaviourState::kObstacle; }, 0.3)) << r.out.reason;
+  const double blocked_at = r.t;
+  const double patience = r.b.config().obstacle_patience_s;
+  for (int second = 0; second < 8 && r.reversals == 0; ++second) {
+    r.Until([&] { return r.reversals > 0; }, 0.8);
+    if (r.reversals > 0) break;
+    r.walls.pop_back();  // lost for 0.2 s
+    r.Until([&] { return r.reversals > 0; }, 0.2);
+    r.walls.push_back(thing);
+  }
+  ASSERT_EQ(r.reversals, 1) << r.out.reason;
+  EXPECT_NEAR(r.t - blocked_at, patience, 0.2);
+  EXPECT_EQ(r.b.travel_sign(), -1);
+  EXPECT_GT(front - r.x, 7.5);  // never touched it
+  EXPECT_THAT(r.out.reason, ::testing::HasSubstr("travel reversed"));
+}
+
 TEST(HallwayBehaviourTest, StopsAtOnceForSomethingSuddenlyClose) {
   Drive r(fake::Hallway(60));
   ASSERT_TRUE(r.Until([&] { return r.x > -200.0; }, 30.0));
@@ -285,6 +367,12 @@ TEST(HallwayBehaviourTest, RejectsBadConfig) {
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
   c = {};
   c.turn_tolerance_deg = 90.0;
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+  c = {};
+  c.frames_per_door = -1;
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+  c = {};
+  c.camera_frame_period_s = 0.0;
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "stickrep/map.h"
+
 namespace stickrep::locomotion {
 
 void ApplyRobot(const sensing::RobotConfig& robot, HallwayBehaviourConfig& behaviour) {
@@ -12,6 +14,9 @@ void ApplyRobot(const sensing::RobotConfig& robot, HallwayBehaviourConfig& behav
   f.cone_deg = robot.sonar_ring.cone_deg;
   f.coaxial_sensor = robot.camera.coaxial_sensor;
   f.max_speed_ftps = robot.base.max_speed_ftps;
+  behaviour.camera_fov_deg = robot.camera.fov_deg;
+  behaviour.camera_frame_period_s = 1.0 / robot.camera.frame_rate_hz;
+  behaviour.door_in_view_in = map::DoorClassWidthIn(map::DoorClass::k40);
 }
 
 LocomotionConfig LoadLocomotionConfig(const StrictYaml& c, const sensing::RobotConfig& robot) {
@@ -40,6 +45,8 @@ LocomotionConfig LoadLocomotionConfig(const StrictYaml& c, const sensing::RobotC
   out.behaviour.scan_timeout_s = h.Get<double>("scan_timeout_s", 0.1, 5.0, "s");
   out.behaviour.envelope_offset_in = h.Get<double>("envelope_offset_in", 1.0, 60.0, "in");
   out.behaviour.envelope_heading_deg = h.Get<double>("envelope_heading_deg", 0.5, 30.0, "deg");
+  out.behaviour.frames_per_door = h.Get<int>("frames_per_door", 0, 20, "frames");
+  out.behaviour.min_view_speed_ftps = h.Get<double>("min_view_speed_ftps", 0.1, 5.0, "ft/s");
   h.Finish();
   f.max_angular_radps = std::min(f.max_angular_radps, out.limits.max_angular_rate_radps);
   c.Finish();

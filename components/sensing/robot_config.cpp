@@ -64,6 +64,7 @@ RobotConfig LoadRobotConfig(const StrictYaml& root) {
   c.coaxial_sensor = cam.Get<int>("coaxial_sensor", 0, 63, "");
   c.offset_forward_in = cam.Get<double>("offset_forward_in", -24.0, 24.0, "in");
   c.radial_distortion_k1 = cam.Get<double>("radial_distortion_k1", -0.3, 0.5, "");
+  c.frame_rate_hz = cam.Get<double>("frame_rate_hz", 0.5, 120.0, "Hz");
   cam.Finish();
   c.Validate(cam, s);
 

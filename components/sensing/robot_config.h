@@ -34,6 +34,7 @@ struct CameraConfig {
   // The lens's radial distortion from calibration: x_d = x_u (1 + k1 r_u^2) in normalised
   // image coordinates (k1 > 0: pincushion). The renderer draws with it; the sensing undoes it.
   double radial_distortion_k1 = 0.10;  // configs/robot.yaml
+  double frame_rate_hz = 5.0;          // §6.3: "a frame every 0.2 seconds"
 
   // The pitch, focal length, width and FOV are not independent: the image edge must sit at
   // FOV/2. Rejects sets that disagree by more than 0.5°.

@@ -28,6 +28,7 @@ const char* kGood = R"(robot:
     coaxial_sensor: 0
     offset_forward_in: 0
     radial_distortion_k1: 0.1
+    frame_rate_hz: 5
   base:
     max_speed_ftps: 2.6
     wheel_base_in: 14

@@ -61,6 +61,25 @@ TEST(WhereAmIRunTest, AKidnappedRobotIsNoticedAndRecovers) {
   EXPECT_TRUE(r.second->correct) << "edge " << r.second->edge << ", truth " << r.second->truth_edge;
 }
 
+TEST(WhereAmIRunTest, AStartInAnOpenLobbyFollowsItsWallsOutWithoutTouchingAColumn) {
+  // Seed 2 starts in the entrance lobby of maps/teaching_building_1f.yaml (35 x 25 ft, two
+  // 20 in columns), 48 in from its wall. A column within the side range once let the far
+  // wall of the lobby pass for the hallway's other side: the follower then stopped 200 in
+  // short of every wall, turned round the columns and ran into one.
+  const RunSetup teaching =
+      LoadRunSetup("", std::string(STICKREP_SOURCE_DIR) + "/maps/teaching_building_1f.yaml");
+  RunOptions o;
+  o.seed = 2;
+  o.ring_id = "main_corridor";
+  o.max_sim_s = 300.0;
+  const RunResult r = RunWhereAmI(teaching, o);
+  EXPECT_NE(r.start.find("edge 91 +"), std::string::npos) << r.start;  // in the lobby
+  EXPECT_EQ(r.collisions, 0);
+  ASSERT_TRUE(r.first.has_value()) << r.ended;
+  EXPECT_TRUE(r.first->correct) << "localized on edge " << r.first->edge << ", truth edge "
+                                << r.first->truth_edge;
+}
+
 TEST(WhereAmIRunTest, MeasuringCountsTheDoorsAndWallsPassed) {
   RunOptions o;
   o.seed = 11;
