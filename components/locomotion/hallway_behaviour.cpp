@@ -308,6 +308,211 @@ void HallwayBehaviour::TrackBothWalls(double width_in) {
   tracker_.UpdateOffset(estimate_.lateral_offset_in, recess);
 }
 
+bool HallwayBehaviour::TurnInPlace(double odometry_heading_rad, double dt_s, BehaviourOutput& out) {
+  const double remaining = WrapPi(turn_target_rad_ - odometry_heading_rad);
+  const double a = config_.turn_accel_radps2;
+  const bool settled = std::abs(remaining) <= DegToRad(config_.turn_tolerance_deg) &&
+                       std::abs(last_angular_radps_) <= a * dt_s + 1e-12;
+  if (!settled) {
+    // The rate that still brakes to rest at the target, within the ramp either way.
+    const double wanted = std::copysign(
+        std::min(config_.turn_rate_radps, std::sqrt(2.0 * a * std::abs(remaining))), remaining);
+    out.angular_radps =
+        std::clamp(wanted, last_angular_radps_ - a * dt_s, last_angular_radps_ + a * dt_s);
+    last_angular_radps_ = out.angular_radps;
+    last_linear_ftps_ = 0.0;
+    out.reason = fmt::format("turning {:+.0f} deg in place at a {}: {:.0f} deg to go",
+                             RadToDeg(turn_rad_), ToString(pending_), RadToDeg(std::abs(remaining)));
+    Report(out);
+    return true;
+  }
+  // Done: follow the new hallway with a fresh controller and no stale wall.
+  tracker_.TurnedOnto(turn_rad_);
+  state_ = BehaviourState::kFollowing;
+  pending_ = TurnKind::kNone;
+  follower_.Reset();
+  wall_known_ = false;
+  last_angular_radps_ = 0.0;
+  return false;
+}
+
+void HallwayBehaviour::Reverse(BehaviourOutput& out) {
+  travel_sign_ = -travel_sign_;
+  wall_known_ = false;
+  blocked_ = false;
+  follower_.Reset();
+  last_linear_ftps_ = last_angular_radps_ = 0.0;
+  state_ = BehaviourState::kFollowing;
+  pending_ = TurnKind::kNone;
+  out.linear_ftps = out.angular_radps = 0.0;
+  out.reversed = true;
+  out.turn_kind = TurnKind::kHallwayEnd;
+}
+
+bool HallwayBehaviour::BrakeAndAct(double wall_in, double odometry_heading_rad, double dt_s,
+                                   BehaviourOutput& out) {
+  const double speed =
+      std::max(0.0, std::abs(last_linear_ftps_) - config_.follower.brake_decel_ftps2 * dt_s);
+  if (speed > kAtRestFtps) {
+    out.linear_ftps = travel_sign_ * speed;
+    last_linear_ftps_ = out.linear_ftps;
+    last_angular_radps_ = 0.0;
+    out.reason = fmt::format("{} ahead: braking before acting on it", ToString(pending_));
+    Report(out);
+    return true;
+  }
+  last_linear_ftps_ = 0.0;
+  follower_.Reset();
+  if (pending_ == TurnKind::kHallwayEnd) {
+    Reverse(out);
+    out.reason = fmt::format("hallway end {:.0f} in ahead: travel reversed, now {}", wall_in,
+                             travel_sign_ > 0 ? "forward" : "backward");
+    Report(out);
+    return true;
+  }
+  state_ = BehaviourState::kTurning;
+  turn_rad_ = pending_rotate_rad_;
+  // Turn onto the new hallway's direction, not by a fixed angle from wherever the base
+  // points: a heading error left from aligning is taken out in the same turn.
+  const double heading_error = tracker_.heading_known() ? tracker_.heading_rad() : 0.0;
+  turn_target_rad_ = WrapPi(odometry_heading_rad - heading_error + pending_rotate_rad_);
+  last_angular_radps_ = 0.0;
+  out.turn_started = true;
+  blocked_ = false;
+  out.turn_kind = pending_;
+  out.reason = fmt::format("{} {:.0f} in ahead: turning {:+.0f} deg in place", ToString(pending_),
+                           wall_in, RadToDeg(pending_rotate_rad_));
+  Report(out);
+  return true;
+}
+
+void HallwayBehaviour::UpdateTrack(double width_in) {
+  // The scan's fit feeds the tracker where both walls are plain. Where one side has opened
+  // (a crossing, the hallway just turned out of) the other wall alone places the base,
+  // with the width measured before; its stray echoes from round the corner make the heading
+  // untrustworthy there.
+  if (!estimate_.left_open && !estimate_.right_open) {
+    TrackBothWalls(width_in);
+    return;
+  }
+  if (estimate_.left_open == estimate_.right_open) return;
+  // Before any width was measured (a start beside an open hall) the default width places
+  // the base: a guess, but one that keeps it off the wall it can see.
+  const WallLine& plain = estimate_.left_open ? estimate_.right : estimate_.left;
+  if (!plain.valid || plain.inliers < 2) return;
+  const double half = width_in / 2.0;
+  const double offset = estimate_.left_open ? plain.distance_in - half : half - plain.distance_in;
+  // The wall seen farther than the track puts it: a recess in it.
+  const double predicted_in = half + (estimate_.left_open ? 1.0 : -1.0) * tracker_.offset_in();
+  const bool accepted = tracker_.UpdateOffset(offset, plain.distance_in >= predicted_in - kNearerIn);
+  // With no heading yet, the one wall's is the best there is; otherwise odometry carries it
+  // (stray echoes from round a corner bias a one-sided fit).
+  if (accepted && !tracker_.heading_known() && estimate_.heading_valid) {
+    tracker_.UpdateHeading(estimate_.heading_error_rad);
+  }
+}
+
+void HallwayBehaviour::Blocked(double odometer_in, double now_s, BehaviourOutput& out) {
+  // One blocked spell lasts until the base has got on by kObstacleHoldIn: a wall met at an
+  // angle (a bend's outer corner, an opening's edge, met with no wall to steer by) clears
+  // for a scan now and then as the base creeps at it, and must not restart the patience
+  // each time. Blocked for obstacle_patience_s, the way ahead is taken for closed and
+  // travel reverses (§6.3 A4), as at a hallway end.
+  const double free_in = travel_sign_ > 0 ? estimate_.free_forward_in : estimate_.free_backward_in;
+  const char* where = travel_sign_ > 0 ? "ahead" : "behind";
+  if (!blocked_) {
+    blocked_ = true;
+    blocked_since_s_ = now_s;
+    blocked_odometer_in_ = odometer_in;
+  } else if (now_s - blocked_since_s_ >= config_.obstacle_patience_s) {
+    Reverse(out);
+    out.reason = fmt::format("blocked {:.0f} s by something {:.0f} in {}: travel reversed, now {}",
+                             config_.obstacle_patience_s, free_in, where,
+                             travel_sign_ > 0 ? "forward" : "backward");
+    return;
+  }
+  out.reason = fmt::format("obstacle {:.0f} in {}: stopped until it clears", free_in, where);
+}
+
+bool HallwayBehaviour::ActAtWall(double wall_in, double wall_normal, double stop_at_in,
+                                 bool was_obstacle, double now_s, BehaviourOutput& out) {
+  const HallwayFollowerConfig& fc = config_.follower;
+  HallwayEstimate seen = estimate_;
+  (travel_sign_ > 0 ? seen.wall_forward_in : seen.wall_backward_in) = wall_in;
+  (travel_sign_ > 0 ? seen.wall_forward_normal_rad : seen.wall_backward_normal_rad) = wall_normal;
+  HallwayFollowerConfig at = fc;
+  at.turn_wall_ahead_in = std::max(fc.turn_wall_ahead_in, stop_at_in + 2.0 * config_.stop_tolerance_in);
+  const TurnRequest turn = DetectTurn(seen, travel_sign_, at);
+  // Something that has stood in the way, unmoved, for obstacle_patience_s is taken for what
+  // the sides say it is (the flank check leans on the heading estimate, which can be off
+  // right after aligning): a corner to turn, or the end of the way to reverse from.
+  if (!was_obstacle) obstacle_since_s_ = now_s;
+  const bool patience_over = was_obstacle && now_s - obstacle_since_s_ >= config_.obstacle_patience_s;
+  if (turn.kind != TurnKind::kNone && !patience_over && !WallSpansHallway(wall_in, wall_normal)) {
+    // Something in the way, not the end of the hallway: wait here until it goes.
+    out.obstacle_stop_started = !was_obstacle;
+    state_ = BehaviourState::kObstacle;
+    follower_.Reset();
+    last_linear_ftps_ = last_angular_radps_ = 0.0;
+    out.reason = fmt::format("obstacle {:.0f} in {} narrower than the hallway: stopped until it "
+                             "clears",
+                             wall_in, travel_sign_ > 0 ? "ahead" : "behind");
+    Report(out);
+    return true;
+  }
+  if (turn.kind != TurnKind::kNone) {
+    pending_ = turn.kind;
+    // A junction: turn toward the camera side, where the mapped wall is.
+    pending_rotate_rad_ = turn.kind == TurnKind::kJunction ? travel_sign_ * kPi / 2.0 : turn.rotate_rad;
+    state_ = BehaviourState::kStopping;
+    out.turn_kind = turn.kind;
+  }
+  return false;
+}
+
+void HallwayBehaviour::Follow(double speed, double width_in, double wall_in, double stop_at_in,
+                              bool was_obstacle, double odometer_in, double now_s, double dt_s,
+                              BehaviourOutput& out) {
+  // Following: the mission's speed, capped so the base stops on the new hallway's axis.
+  const HallwayFollowerConfig& fc = config_.follower;
+  if (std::isfinite(wall_in)) {
+    const double margin_in = std::max(0.0, wall_in - stop_at_in);
+    speed = std::min(speed, InchesToFeet(std::sqrt(2.0 * FeetToInches(fc.brake_decel_ftps2) * margin_in)));
+  }
+  // Paced for the camera at the mapped wall's range: half the hallway, less the offset
+  // toward it (the tracked offset, not one scan's, which a door recess lengthens).
+  speed = std::min(speed, ViewPacedSpeedFtps(config_, width_in / 2.0 -
+                                                          (tracker_.offset_known() ? tracker_.offset_in() : 0.0)));
+  // Where a wall ahead reaches into the side sensors' view, odometry carries the track.
+  if (scan_fresh_ && !std::isfinite(wall_in)) UpdateTrack(width_in);
+  scan_fresh_ = false;
+  HallwayEstimate steer_on = estimate_;
+  steer_on.offset_valid = tracker_.offset_known();
+  steer_on.lateral_offset_in = tracker_.offset_in();
+  steer_on.heading_valid = tracker_.heading_known();
+  steer_on.heading_error_rad = tracker_.heading_rad();
+  const SteerCommand cmd = follower_.Steer(steer_on, travel_sign_ * speed, dt_s);
+  out.linear_ftps = cmd.linear_ftps;
+  out.angular_radps = cmd.angular_radps;
+  last_linear_ftps_ = cmd.linear_ftps;
+  last_angular_radps_ = cmd.angular_radps;
+  if (cmd.stopped_for_obstacle) {
+    out.obstacle_stop_started = !was_obstacle;
+    state_ = BehaviourState::kObstacle;
+    Blocked(odometer_in, now_s, out);
+  } else {
+    if (blocked_ && std::abs(odometer_in - blocked_odometer_in_) > kObstacleHoldIn) blocked_ = false;
+    state_ = BehaviourState::kFollowing;
+    if (std::isfinite(wall_in)) {
+      out.reason = fmt::format("following; wall {:.0f} in ahead, slowing to stop {:.0f} in from it",
+                               wall_in, stop_at_in);
+    } else {
+      out.reason = "following the hallway";
+    }
+  }
+  Report(out);
+}
+
 BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odometry_heading_rad,
                                        double odometer_in, double now_s, double dt_s) {
   BehaviourOutput out;
@@ -338,32 +543,7 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
   }
 
   // Rotating in place needs odometry only.
-  if (state_ == BehaviourState::kTurning) {
-    const double remaining = WrapPi(turn_target_rad_ - odometry_heading_rad);
-    const double a = config_.turn_accel_radps2;
-    const bool settled = std::abs(remaining) <= DegToRad(config_.turn_tolerance_deg) &&
-                         std::abs(last_angular_radps_) <= a * dt_s + 1e-12;
-    if (!settled) {
-      // The rate that still brakes to rest at the target, within the ramp either way.
-      const double wanted = std::copysign(
-          std::min(config_.turn_rate_radps, std::sqrt(2.0 * a * std::abs(remaining))), remaining);
-      out.angular_radps =
-          std::clamp(wanted, last_angular_radps_ - a * dt_s, last_angular_radps_ + a * dt_s);
-      last_angular_radps_ = out.angular_radps;
-      last_linear_ftps_ = 0.0;
-      out.reason = fmt::format("turning {:+.0f} deg in place at a {}: {:.0f} deg to go",
-                               RadToDeg(turn_rad_), ToString(pending_), RadToDeg(std::abs(remaining)));
-      Report(out);
-      return out;
-    }
-    // Done: follow the new hallway with a fresh controller and no stale wall.
-    tracker_.TurnedOnto(turn_rad_);
-    state_ = BehaviourState::kFollowing;
-    pending_ = TurnKind::kNone;
-    follower_.Reset();
-    wall_known_ = false;
-    last_angular_radps_ = 0.0;
-  }
+  if (state_ == BehaviourState::kTurning && TurnInPlace(odometry_heading_rad, dt_s, out)) return out;
 
   if (!have_scan_ || now_s - scan_time_s_ > config_.scan_timeout_s) {
     state_ = BehaviourState::kNoScan;
@@ -394,171 +574,17 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
   // tolerance, scan by scan).
   const double hold_in = was_obstacle ? kObstacleHoldIn : 0.0;
   if (state_ == BehaviourState::kFollowing &&
-      wall_in - stop_at_in <= config_.stop_tolerance_in + hold_in) {
-    HallwayEstimate seen = estimate_;
-    (travel_sign_ > 0 ? seen.wall_forward_in : seen.wall_backward_in) = wall_in;
-    (travel_sign_ > 0 ? seen.wall_forward_normal_rad : seen.wall_backward_normal_rad) =
-        wall_normal;
-    HallwayFollowerConfig at = fc;
-    at.turn_wall_ahead_in = std::max(fc.turn_wall_ahead_in, stop_at_in + 2.0 * config_.stop_tolerance_in);
-    const TurnRequest turn = DetectTurn(seen, travel_sign_, at);
-    // Something that has stood in the way, unmoved, for obstacle_patience_s is taken for
-    // what the sides say it is (the flank check leans on the heading estimate, which can be
-    // off right after aligning): a corner to turn, or the end of the way to reverse from.
-    if (!was_obstacle) obstacle_since_s_ = now_s;
-    const bool patience_over = was_obstacle && now_s - obstacle_since_s_ >= config_.obstacle_patience_s;
-    if (turn.kind != TurnKind::kNone && !patience_over && !WallSpansHallway(wall_in, wall_normal)) {
-      // Something in the way, not the end of the hallway: wait here until it goes.
-      out.obstacle_stop_started = !was_obstacle;
-      state_ = BehaviourState::kObstacle;
-      follower_.Reset();
-      last_linear_ftps_ = last_angular_radps_ = 0.0;
-      out.reason = fmt::format("obstacle {:.0f} in {} narrower than the hallway: stopped until it "
-                               "clears",
-                               wall_in, travel_sign_ > 0 ? "ahead" : "behind");
-      Report(out);
-      return out;
-    }
-    if (turn.kind != TurnKind::kNone) {
-      pending_ = turn.kind;
-      // A junction: turn toward the camera side, where the mapped wall is.
-      pending_rotate_rad_ = turn.kind == TurnKind::kJunction ? travel_sign_ * kPi / 2.0 : turn.rotate_rad;
-      state_ = BehaviourState::kStopping;
-      out.turn_kind = turn.kind;
-    }
-  }
-
-  if (state_ == BehaviourState::kStopping) {
-    const double speed = std::max(0.0, std::abs(last_linear_ftps_) - fc.brake_decel_ftps2 * dt_s);
-    if (speed > kAtRestFtps) {
-      out.linear_ftps = travel_sign_ * speed;
-      last_linear_ftps_ = out.linear_ftps;
-      last_angular_radps_ = 0.0;
-      out.reason = fmt::format("{} ahead: braking before acting on it", ToString(pending_));
-      Report(out);
-      return out;
-    }
-    last_linear_ftps_ = 0.0;
-    follower_.Reset();
-    if (pending_ == TurnKind::kHallwayEnd) {
-      travel_sign_ = -travel_sign_;
-      wall_known_ = false;
-      state_ = BehaviourState::kFollowing;
-      pending_ = TurnKind::kNone;
-      out.reversed = true;
-      out.turn_kind = TurnKind::kHallwayEnd;
-      out.reason = fmt::format("hallway end {:.0f} in ahead: travel reversed, now {}", wall_in,
-                               travel_sign_ > 0 ? "forward" : "backward");
-      Report(out);
-      return out;
-    }
-    state_ = BehaviourState::kTurning;
-    turn_rad_ = pending_rotate_rad_;
-    // Turn onto the new hallway's direction, not by a fixed angle from wherever the base
-    // points: a heading error left from aligning is taken out in the same turn.
-    const double heading_error = tracker_.heading_known() ? tracker_.heading_rad() : 0.0;
-    turn_target_rad_ = WrapPi(odometry_heading_rad - heading_error + pending_rotate_rad_);
-    last_angular_radps_ = 0.0;
-    out.turn_started = true;
-    blocked_ = false;
-    out.turn_kind = pending_;
-    out.reason = fmt::format("{} {:.0f} in ahead: turning {:+.0f} deg in place", ToString(pending_),
-                             wall_in, RadToDeg(pending_rotate_rad_));
-    Report(out);
+      wall_in - stop_at_in <= config_.stop_tolerance_in + hold_in &&
+      ActAtWall(wall_in, wall_normal, stop_at_in, was_obstacle, now_s, out)) {
     return out;
   }
 
-  // Following: the mission's speed, capped so the base stops on the new hallway's axis.
-  double speed = std::abs(commanded_speed_ftps);
-  if (std::isfinite(wall_in)) {
-    const double margin_in = std::max(0.0, wall_in - stop_at_in);
-    speed = std::min(speed, InchesToFeet(std::sqrt(2.0 * FeetToInches(fc.brake_decel_ftps2) * margin_in)));
+  if (state_ == BehaviourState::kStopping && BrakeAndAct(wall_in, odometry_heading_rad, dt_s, out)) {
+    return out;
   }
-  // Paced for the camera at the mapped wall's range: half the hallway, less the offset
-  // toward it (the tracked offset, not one scan's, which a door recess lengthens).
-  speed = std::min(speed, ViewPacedSpeedFtps(config_, width_in / 2.0 -
-                                                          (tracker_.offset_known() ? tracker_.offset_in() : 0.0)));
-  // The scan's fit feeds the tracker where both walls are plain. Where one side has opened
-  // (a crossing, the hallway just turned out of) the other wall alone places the base,
-  // with the width measured before; its stray echoes from round the corner make the heading
-  // untrustworthy there. Where a wall ahead reaches into the side sensors' view, odometry
-  // carries the track.
-  if (scan_fresh_ && !std::isfinite(wall_in)) {
-    if (!estimate_.left_open && !estimate_.right_open) {
-      TrackBothWalls(width_in);
-    } else if (estimate_.left_open != estimate_.right_open) {
-      // Before any width was measured (a start beside an open hall) the default width
-      // places the base: a guess, but one that keeps it off the wall it can see.
-      const WallLine& plain = estimate_.left_open ? estimate_.right : estimate_.left;
-      if (plain.valid && plain.inliers >= 2) {
-        const double half = width_in / 2.0;
-        const double offset = estimate_.left_open ? plain.distance_in - half : half - plain.distance_in;
-        // The wall seen farther than the track puts it: a recess in it.
-        const double predicted_in = half + (estimate_.left_open ? 1.0 : -1.0) * tracker_.offset_in();
-        const bool accepted =
-            tracker_.UpdateOffset(offset, plain.distance_in >= predicted_in - kNearerIn);
-        // With no heading yet, the one wall's is the best there is; otherwise odometry
-        // carries it (stray echoes from round a corner bias a one-sided fit).
-        if (accepted && !tracker_.heading_known() && estimate_.heading_valid) {
-          tracker_.UpdateHeading(estimate_.heading_error_rad);
-        }
-      }
-    }
-  }
-  scan_fresh_ = false;
-  HallwayEstimate steer_on = estimate_;
-  steer_on.offset_valid = tracker_.offset_known();
-  steer_on.lateral_offset_in = tracker_.offset_in();
-  steer_on.heading_valid = tracker_.heading_known();
-  steer_on.heading_error_rad = tracker_.heading_rad();
-  const SteerCommand cmd = follower_.Steer(steer_on, travel_sign_ * speed, dt_s);
-  out.linear_ftps = cmd.linear_ftps;
-  out.angular_radps = cmd.angular_radps;
-  last_linear_ftps_ = cmd.linear_ftps;
-  last_angular_radps_ = cmd.angular_radps;
-  if (cmd.stopped_for_obstacle) {
-    out.obstacle_stop_started = !was_obstacle;
-    state_ = BehaviourState::kObstacle;
-    const double free_in = travel_sign_ > 0 ? estimate_.free_forward_in : estimate_.free_backward_in;
-    // One blocked spell lasts until the base has got on by kObstacleHoldIn: a wall met at
-    // an angle (a bend's outer corner, an opening's edge, met with no wall to steer by)
-    // clears for a scan now and then as the base creeps at it, and must not restart the
-    // patience each time. Blocked for obstacle_patience_s, the way ahead is taken for
-    // closed and travel reverses (§6.3 A4), as at a hallway end.
-    if (!blocked_) {
-      blocked_ = true;
-      blocked_since_s_ = now_s;
-      blocked_odometer_in_ = odometer_in;
-    } else if (now_s - blocked_since_s_ >= config_.obstacle_patience_s) {
-      blocked_ = false;
-      travel_sign_ = -travel_sign_;
-      wall_known_ = false;
-      follower_.Reset();
-      last_linear_ftps_ = last_angular_radps_ = 0.0;
-      state_ = BehaviourState::kFollowing;
-      out.linear_ftps = out.angular_radps = 0.0;
-      out.reversed = true;
-      out.turn_kind = TurnKind::kHallwayEnd;
-      out.reason = fmt::format("blocked {:.0f} s by something {:.0f} in {}: travel reversed, now {}",
-                               config_.obstacle_patience_s, free_in,
-                               travel_sign_ > 0 ? "behind" : "ahead",
-                               travel_sign_ > 0 ? "forward" : "backward");
-      Report(out);
-      return out;
-    }
-    out.reason = fmt::format("obstacle {:.0f} in {}: stopped until it clears", free_in,
-                             travel_sign_ > 0 ? "ahead" : "behind");
-  } else {
-    if (blocked_ && std::abs(odometer_in - blocked_odometer_in_) > kObstacleHoldIn) blocked_ = false;
-    state_ = BehaviourState::kFollowing;
-    if (std::isfinite(wall_in)) {
-      out.reason = fmt::format("following; wall {:.0f} in ahead, slowing to stop {:.0f} in from it",
-                               wall_in, stop_at_in);
-    } else {
-      out.reason = "following the hallway";
-    }
-  }
-  Report(out);
+
+  Follow(std::abs(commanded_speed_ftps), width_in, wall_in, stop_at_in, was_obstacle, odometer_in,
+         now_s, dt_s, out);
   return out;
 }
 

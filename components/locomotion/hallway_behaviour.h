@@ -193,7 +193,25 @@ class HallwayBehaviour {
 
  private:
   void Report(BehaviourOutput& out) const;
-  // Updates the track from a scan with both walls in range (`width_in`: the hallway's).
+  // The steps of Step(), each filling `out`; a true return means `out` is final.
+  // Rotating in place toward turn_target_rad_.
+  bool TurnInPlace(double odometry_heading_rad, double dt_s, BehaviourOutput& out);
+  // At the stopping point before a wall ahead: waits for an obstacle, or sets the turn.
+  bool ActAtWall(double wall_in, double wall_normal, double stop_at_in, bool was_obstacle,
+                 double now_s, BehaviourOutput& out);
+  // Braking before the pending turn, then reversing or starting the turn.
+  bool BrakeAndAct(double wall_in, double odometry_heading_rad, double dt_s, BehaviourOutput& out);
+  // Following at up to `speed` (ft/s, unsigned): capped before the wall ahead and for the
+  // camera, steered on the track; fills and reports `out`.
+  void Follow(double speed, double width_in, double wall_in, double stop_at_in, bool was_obstacle,
+              double odometer_in, double now_s, double dt_s, BehaviourOutput& out);
+  // The follower stopped for something close: waits, or reverses after the patience.
+  void Blocked(double odometer_in, double now_s, BehaviourOutput& out);
+  // Travel reverses (a hallway end, §6.3 A4).
+  void Reverse(BehaviourOutput& out);
+  // Updates the track from the fresh scan (`width_in`: the hallway's).
+  void UpdateTrack(double width_in);
+  // ... from a scan with both walls in range.
   void TrackBothWalls(double width_in);
   // Whether a wall ahead at wall_in spans the hallway (an end, a corner, a junction) rather
   // than standing in it (an obstacle): judged on the newest scan.

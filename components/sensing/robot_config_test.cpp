@@ -80,7 +80,7 @@ TEST(RobotConfigTest, MissingKeyIsRejected) {
 
 TEST(RobotConfigTest, OutOfRangeValueNamesUnitAndLine) {
   const InputError e = LoadError(Replace(kGood, "max_speed_ftps: 2.6", "max_speed_ftps: -1"));
-  EXPECT_EQ(e.line(), 20);
+  EXPECT_EQ(e.line(), 21);
   EXPECT_THAT(e.reason(), HasSubstr("ft/s"));
 }
 
