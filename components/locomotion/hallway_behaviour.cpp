@@ -442,7 +442,13 @@ bool HallwayBehaviour::ActAtWall(double wall_in, double wall_normal, double stop
   (travel_sign_ > 0 ? seen.wall_forward_normal_rad : seen.wall_backward_normal_rad) = wall_normal;
   HallwayFollowerConfig at = fc;
   at.turn_wall_ahead_in = std::max(fc.turn_wall_ahead_in, stop_at_in + 2.0 * config_.stop_tolerance_in);
-  const TurnRequest turn = DetectTurn(seen, travel_sign_, at);
+  TurnRequest turn = DetectTurn(seen, travel_sign_, at);
+  if (turn.kind == TurnKind::kHallwayEnd) {
+    if (const auto rotate = EmptySectorTurnRad(scan_, travel_sign_, fc)) {
+      turn.kind = TurnKind::kCorner;
+      turn.rotate_rad = *rotate;
+    }
+  }
   // Something that has stood in the way, unmoved, for obstacle_patience_s is taken for what
   // the sides say it is (the flank check leans on the heading estimate, which can be off
   // right after aligning): a corner to turn, or the end of the way to reverse from.

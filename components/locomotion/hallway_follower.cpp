@@ -304,6 +304,44 @@ HallwayEstimate EstimateHallway(const std::vector<SonarRange>& scan,
   return est;
 }
 
+std::optional<double> EmptySectorTurnRad(const std::vector<SonarRange>& scan, int travel_sign,
+                                         const HallwayFollowerConfig& c) {
+  if (static_cast<int>(scan.size()) != c.sensor_count) return std::nullopt;
+  const double travel = travel_sign >= 0 ? 0.0 : kPi;
+  const double step = DegToRad(c.spacing_deg);
+  // The sensor nearest a bearing (relative to the travel direction); -1 if none within half
+  // a spacing.
+  const auto sensor_at = [&](double rel_rad) {
+    for (int k = 0; k < c.sensor_count; ++k) {
+      if (std::abs(WrapPi(SensorBearingRad(k, c) - travel - rel_rad)) <= step / 2.0 + 1e-9) return k;
+    }
+    return -1;
+  };
+  const auto silent = [&](int k) {
+    return k >= 0 && !scan[k].valid && !scan[k].outside_footprint;
+  };
+  for (const double side : {+1.0, -1.0}) {
+    // The run of silent sensors from the first one off the axis outward.
+    double last = 0.0;
+    for (double b = step; b <= kPi - step / 2.0; b += step) {
+      if (!silent(sensor_at(side * b))) break;
+      last = b;
+    }
+    if (last + 1e-9 < DegToRad(c.min_free_sector_deg)) continue;
+    // The other side answers (the outer wall of the bend): most of its sensors to abeam.
+    int answering = 0, looked = 0;
+    for (double b = step; b <= kPi / 2.0 + 1e-9; b += step) {
+      const int k = sensor_at(-side * b);
+      if (k < 0) continue;
+      ++looked;
+      if (scan[k].valid) ++answering;
+    }
+    if (2 * answering <= looked) continue;
+    return side * (step + last) / 2.0;
+  }
+  return std::nullopt;
+}
+
 TurnRequest DetectTurn(const HallwayEstimate& estimate, int travel_sign,
                        const HallwayFollowerConfig& config) {
   TurnRequest turn;

@@ -27,6 +27,7 @@
 //     the robot travels a hallway either way with the camera kept on the wall (§6.3).
 
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace stickrep::locomotion {
@@ -93,6 +94,8 @@ struct HallwayFollowerConfig {
   double max_oblique_wall_deg = 60.0;
   double oblique_half_angle_deg = 45.0;
   double min_oblique_wall_deg = 15.0;
+  // EmptySectorTurnRad: an empty sector at least this wide from the travel axis is a turn.
+  double min_free_sector_deg = 75.0;
 
   // --- Control ---
   double max_speed_ftps = 2.6;  // §6.3: the LabMate's rated speed
@@ -214,6 +217,15 @@ double PredictedWallRangeIn(double bearing_rad, double normal_rad, double distan
 // Bearing of sensor k from the base's forward axis (see the conventions above), in
 // (-pi, pi].
 double SensorBearingRad(int k, const HallwayFollowerConfig& config);
+
+// Where a hallway end was judged from the front sensors: a turn after all when, on one side,
+// every sensor from the first off the travel axis to at least min_free_sector_deg returns no
+// echo (the next stretch's walls meet them too steeply: a bend of 30-75 deg, whose side is
+// not "open" abeam because the sensors behind abeam still read the wall passed) while the
+// other side answers. Returns the rotation onto the middle of that empty sector (CCW +),
+// or nullopt. An open door cannot empty a sector that wide at the stopping point.
+std::optional<double> EmptySectorTurnRad(const std::vector<SonarRange>& scan, int travel_sign,
+                                         const HallwayFollowerConfig& config);
 
 // The corner / hallway-end rule: a wall ahead (in the travel direction, travel_sign = +1
 // forward, -1 backward) closer than turn_wall_ahead_in, and which sides are open.

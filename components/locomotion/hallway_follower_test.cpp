@@ -107,6 +107,46 @@ TEST(HallwayFollowerTest, HallwayEndAheadRequestsReversal) {
   EXPECT_EQ(DetectTurn(e, -1, {}).kind, TurnKind::kNone);
 }
 
+// A scan with every sensor answering at 40 in but those whose bearing from the travel
+// direction lies in [from_deg, to_deg], which return no echo.
+std::vector<SonarRange> SilentBetween(double from_deg, double to_deg, int travel_sign) {
+  const HallwayFollowerConfig c;
+  std::vector<SonarRange> scan(c.sensor_count);
+  for (int k = 0; k < c.sensor_count; ++k) {
+    const double rel = RadToDeg(std::remainder(
+        SensorBearingRad(k, c) - (travel_sign > 0 ? 0.0 : kPi), 2.0 * kPi));
+    const bool silent = rel >= from_deg - 1e-6 && rel <= to_deg + 1e-6;
+    scan[k] = {silent ? 0.0 : 40.0, !silent};
+  }
+  return scan;
+}
+
+TEST(HallwayFollowerTest, AnEmptySectorAheadOfAbeamIsABendNotAnEnd) {
+  const HallwayFollowerConfig c;
+  // The sonar at a 60 deg bend, seen from its far wing (science_hall_2f): silent from 15 to
+  // 90 deg toward the turn, the outer wall answering on the other side.
+  auto turn = EmptySectorTurnRad(SilentBetween(15, 90, +1), +1, c);
+  ASSERT_TRUE(turn.has_value());
+  EXPECT_NEAR(RadToDeg(*turn), 52.5, 1e-6);
+  turn = EmptySectorTurnRad(SilentBetween(-90, -15, +1), +1, c);
+  ASSERT_TRUE(turn.has_value());
+  EXPECT_NEAR(RadToDeg(*turn), -52.5, 1e-6);
+  // Travelling backward, bearings count from the backward direction.
+  turn = EmptySectorTurnRad(SilentBetween(15, 90, -1), -1, c);
+  ASSERT_TRUE(turn.has_value());
+  EXPECT_NEAR(RadToDeg(*turn), 52.5, 1e-6);
+  // A real end answers ahead; an open door empties two or three sensors, not five; an
+  // empty sector that does not start next to the axis is no bend ahead.
+  EXPECT_FALSE(EmptySectorTurnRad(SilentBetween(200, 200, +1), +1, c).has_value());
+  EXPECT_FALSE(EmptySectorTurnRad(SilentBetween(30, 60, +1), +1, c).has_value());
+  EXPECT_FALSE(EmptySectorTurnRad(SilentBetween(30, 105, +1), +1, c).has_value());
+  // Both sides silent: an open hall, not a bend.
+  std::vector<SonarRange> open(c.sensor_count);
+  EXPECT_FALSE(EmptySectorTurnRad(open, +1, c).has_value());
+  // A wrong-sized scan.
+  EXPECT_FALSE(EmptySectorTurnRad(std::vector<SonarRange>(3), +1, c).has_value());
+}
+
 TEST(HallwayFollowerTest, LeftCornerRequestsACounterClockwiseTurn) {
   // The hallway turns left: the left wall stops at x = -36, the new hallway runs along +y
   // between x = -36 and x = 60, and the far wall at x = 60 continues to the left.
