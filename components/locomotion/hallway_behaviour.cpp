@@ -276,13 +276,17 @@ void HallwayBehaviour::Report(BehaviourOutput& out) const {
                     std::abs(out.heading_error_rad) <= DegToRad(config_.envelope_heading_deg);
 }
 
+bool HallwayBehaviour::NotNearer(const WallLine& wall, int side, double half_width_in) const {
+  // The track puts the left (+1) wall at half - y, the right (-1) at half + y.
+  return wall.distance_in >= half_width_in - side * tracker_.offset_in() - kNearerIn;
+}
+
 void HallwayBehaviour::TrackBothWalls(double width_in) {
   // Both walls give the offset and the heading. Where one of them is set back (a door, an
   // alcove) or stands out (a pilaster), the scan's offset is an outlier and its heading is
   // fitted to the same wrong wall; the other wall alone, with the width, still places the
   // base. A wall neither explains restarts the track only as HallwayTracker says.
   const double half = width_in / 2.0;
-  const double y = tracker_.offset_in();
   const WallLine& l = estimate_.left;
   const WallLine& r = estimate_.right;
   // One wall alone places the base only on a known track and a measured width.
@@ -303,8 +307,7 @@ void HallwayBehaviour::TrackBothWalls(double width_in) {
     return;
   }
   if (!estimate_.offset_valid) return;
-  const bool recess = (!l_ok || l.distance_in >= half - y - kNearerIn) &&
-                      (!r_ok || r.distance_in >= half + y - kNearerIn);
+  const bool recess = (!l_ok || NotNearer(l, +1, half)) && (!r_ok || NotNearer(r, -1, half));
   tracker_.UpdateOffset(estimate_.lateral_offset_in, recess);
 }
 
@@ -403,8 +406,8 @@ void HallwayBehaviour::UpdateTrack(double width_in) {
   const double half = width_in / 2.0;
   const double offset = estimate_.left_open ? plain.distance_in - half : half - plain.distance_in;
   // The wall seen farther than the track puts it: a recess in it.
-  const double predicted_in = half + (estimate_.left_open ? 1.0 : -1.0) * tracker_.offset_in();
-  const bool accepted = tracker_.UpdateOffset(offset, plain.distance_in >= predicted_in - kNearerIn);
+  const bool accepted =
+      tracker_.UpdateOffset(offset, NotNearer(plain, estimate_.left_open ? -1 : +1, half));
   // With no heading yet, the one wall's is the best there is; otherwise odometry carries it
   // (stray echoes from round a corner bias a one-sided fit).
   if (accepted && !tracker_.heading_known() && estimate_.heading_valid) {

@@ -211,6 +211,9 @@ class HallwayBehaviour {
   void Reverse(BehaviourOutput& out);
   // Updates the track from the fresh scan (`width_in`: the hallway's).
   void UpdateTrack(double width_in);
+  // Whether `wall` on `side` (+1 left, -1 right) is no nearer than the track puts it (a
+  // recess, not a wall that came closer), in a hallway `half_width_in` either side.
+  bool NotNearer(const WallLine& wall, int side, double half_width_in) const;
   // ... from a scan with both walls in range.
   void TrackBothWalls(double width_in);
   // Whether a wall ahead at wall_in spans the hallway (an end, a corner, a junction) rather
