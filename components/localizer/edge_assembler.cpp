@@ -59,8 +59,11 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
   if (direction_ * (odometer_in - farthest_in_) > 0.0) farthest_in_ = odometer_in;
   if (direction_ * (farthest_in_ - odometer_in) > config_.reverse_after_in) {
     // Travelling the other way now: what was being assembled belongs to the old direction.
+    reversal_travel_in_ = last_jamb_in_ && !corner_
+                              ? direction_ * (farthest_in_ - *last_jamb_in_)
+                              : std::numeric_limits<double>::quiet_NaN();
     Restart();
-    heading_ref_rad_.reset();
+    headings_.clear();
     direction_ = -direction_;
     farthest_in_ = odometer_in;
     reversed_ = true;
@@ -72,7 +75,7 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
       if (std::abs(odometer_in_ - corner_->odometer_in) > config_.turn_settled_travel_in) {
         corner_->settled = true;
         corner_->settled_odometer_in = odometer_in_;
-        heading_ref_rad_ = heading_rad;  // the new wall's heading, as driven
+        headings_.clear();  // the new wall's heading, as driven, is the reference
       }
     } else if (std::abs(odometer_in_ - corner_->settled_odometer_in) > config_.range_wait_in) {
       PlaceCorner(std::numeric_limits<double>::quiet_NaN(), out);
@@ -89,8 +92,7 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
     open_.erase(open_.begin());
     if (Decide(t)) Emit(t, out);
   }
-  if (!heading_ref_rad_) heading_ref_rad_ = heading_rad;
-  const double turn = std::remainder(heading_rad - *heading_ref_rad_, 2.0 * M_PI);
+  const double turn = TurnOverWindow(heading_rad);
   if (std::abs(turn) * 180.0 / M_PI < config_.turn_settled_deg) {
     if (std::isfinite(unconfirmed_range_in_)) wall_range_in_ = unconfirmed_range_in_;
   }
@@ -100,6 +102,21 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
     BeginCorner(turn, out);
   }
   return out;
+}
+
+double EdgeAssembler::TurnOverWindow(double heading_rad) {
+  // A base standing still adds nothing new: a sample per half inch or degree.
+  if (headings_.empty() || std::abs(odometer_in_ - headings_.back().odometer_in) >= 0.5 ||
+      std::abs(std::remainder(heading_rad - headings_.back().heading_rad, 2.0 * M_PI)) >=
+          M_PI / 180.0) {
+    headings_.push_back({odometer_in_, heading_rad});
+  }
+  // Keep one sample at or beyond the window's far end: the reference.
+  while (headings_.size() > 1 &&
+         std::abs(odometer_in_ - headings_[1].odometer_in) >= config_.corner_window_in) {
+    headings_.pop_front();
+  }
+  return std::remainder(heading_rad - headings_.front().heading_rad, 2.0 * M_PI);
 }
 
 void EdgeAssembler::SetWallRange(double range_in) {

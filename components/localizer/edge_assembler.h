@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -54,6 +55,11 @@ struct EdgeAssemblerConfig {
   // same way). Smaller changes are a wall the follower bends along (the map's hallway view
   // merges bends up to map::HallwayViewConfig::max_bend_deg, 30 degrees).
   double corner_turn_deg = 30.0;
+  // ... within this much travel: the base turns at a corner in place or within a few inches,
+  // while along a curved wall (a radius of 50 ft turns 2.3 degrees in 24 in) or a bend it
+  // steers through, the heading changes over many feet. A curve is the one wall the map's
+  // hallway view merges its chords into, not a corner per 30 degrees of it.
+  double corner_window_in = 24.0;
   // A turn is over once the base has travelled this far since it began (it turns in place,
   // then drives on): the heading then is the new wall's, and the wall range read then is
   // the one after the corner.
@@ -104,6 +110,9 @@ class EdgeAssembler {
     reversed_ = false;
     return r;
   }
+  // At the last reversal: how far the robot went past the far end of the last emitted
+  // edge before it turned back (NaN when no edge had been emitted, or in a turn).
+  double reversal_travel_in() const { return reversal_travel_in_; }
   int travel_direction() const { return direction_; }
   // Odometer reading at the far end of the last emitted door; empty before the first.
   std::optional<double> last_edge_end_in() const { return last_jamb_in_; }
@@ -155,9 +164,18 @@ class EdgeAssembler {
   int direction_ = 0;                 // +1 / -1 once the robot has moved
   double farthest_in_ = 0.0;          // odometer farthest along the travel direction
   bool reversed_ = false;
+  double reversal_travel_in_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<double> last_jamb_in_;  // trailing jamb of the last emitted door (or corner)
   std::optional<double> last_door_end_in_;  // trailing jamb of the last emitted door
-  std::optional<double> heading_ref_rad_;  // heading along the current stretch of wall
+  // Headings over the last corner_window_in of travel, oldest first: the oldest is the
+  // reference a turn is measured from.
+  struct HeadingSample {
+    double odometer_in;
+    double heading_rad;
+  };
+  std::deque<HeadingSample> headings_;
+  // The heading change from the reference, after adding the newest sample.
+  double TurnOverWindow(double heading_rad);
   double pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();  // node before next edge
   // A corner begun (heading past corner_turn_deg) and not yet placed: the base is turning
   // in place, or has just turned and waits for the wall range on its new side.

@@ -206,6 +206,39 @@ TEST(EdgeAssemblerTest, TurnOfTheHeadingEndsTheWallAtACornerWithItsAngle) {
   EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k36));
 }
 
+TEST(EdgeAssemblerTest, ACurvedWallFollowedAroundIsOneWallNotCorners) {
+  // A quarter circle of radius 600 in on the axis (the heading turns 90 degrees over 942 in
+  // of travel), with a door half way: one wall, the door, and the wall on; no corner.
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  const double arc = 600.0 * M_PI / 2.0;
+  for (double odo = 0.0; odo <= arc + 120.0; odo += 6.0) {
+    const double heading = std::min(odo, arc) / 600.0;
+    if (std::abs(odo - 500.0) < 12.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.9, 500.0});
+    if (std::abs(odo - 1000.0) < 12.0) a.AddSighting({map::DoorClass::k32, 32.0, 0.9, 1000.0});
+    for (const auto& e : a.Advance(odo, heading)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 4u);
+  for (const auto& e : edges) EXPECT_TRUE(std::isnan(e.angle_deg)) << map::Describe(e);
+  EXPECT_THAT(edges[2].metric_in, DoubleNear(1000.0 - 16.0 - 518.0, 1e-9));
+}
+
+TEST(EdgeAssemblerTest, AFortyDegreeTurnWithinAFootIsACorner) {
+  // The follower steers round a 40 degree corner over 12 in: a corner (the hallway view
+  // turns every bend over 30 degrees into one), then the new wall up to a door.
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  for (double odo = 0.0; odo <= 320.0; odo += 2.0) {
+    const double heading = std::clamp((odo - 100.0) / 12.0, 0.0, 1.0) * 40.0 * M_PI / 180.0;
+    if (std::abs(odo - 250.0) < 12.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.9, 250.0});
+    for (const auto& e : a.Advance(odo, heading)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 3u);
+  EXPECT_TRUE(edges[0].metric_is_lower_bound);
+  EXPECT_DOUBLE_EQ(edges[1].angle_deg, 90.0);
+  EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k36));
+}
+
 // Drives `before` in along a wall at `r1` from it, turns in place by `turn_rad` in 10
 // steps of 3 degrees, then drives on with the new wall at `r2`, a 36 in door centred `door_after` in
 // past the turn point. Returns the edges sensed.
@@ -305,6 +338,8 @@ TEST(EdgeAssemblerTest, ReversedTravelRestartsTheSequenceTheOtherWay) {
   EXPECT_FALSE(a.TakeReversal());
   EXPECT_EQ(a.travel_direction(), -1);
   EXPECT_TRUE(a.sequence().empty());
+  // It went from the door's far jamb (118 in) to 198 in before turning back.
+  EXPECT_THAT(a.reversal_travel_in(), DoubleNear(198.0 - 118.0, 1e-9));
   // The door is passed again the other way: a partial wall, then the door.
   std::vector<map::SensedEdge> back;
   for (double odo = 185.0; odo >= 0.0; odo -= 6.0) {
