@@ -48,7 +48,7 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
     if (bayes_ && bayes_->edges() > 0) {
       // Recovering with the filter: its belief is carried over to the way back (a hallway
       // end no longer throws the edges sensed so far away).
-      bayes_->Reverse();
+      bayes_->Reverse(assembler_.reversal_travel_in());
       assembler_.Restart();
       Rebuild(odometer_in, "travel reversed: the evidence is kept, travelling the other way");
       return true;

@@ -15,6 +15,10 @@ constexpr double kOutlierSpanIn = 120.0;
 // a chain of unexplained edges, each of which costs `outlier`.
 constexpr double kPruneBelow = 1e-15;
 
+// The sides of a step in the wall the follower passes straight (a pilaster standing out,
+// a shallow recess: the localizer's max_step_in).
+constexpr double kStepSideIn = 36.0;
+
 bool Coplanar(double angle_deg) { return std::abs(angle_deg - 180.0) < 1.0; }
 
 double ClassWidth(map::SymbolCode code) {
@@ -44,16 +48,23 @@ void BayesLocalizer::Reset() {
   skip_partial_ = false;
 }
 
-void BayesLocalizer::Reverse() {
+void BayesLocalizer::Reverse(double travelled_in) {
   if (states_ == 0 || edges_ == 0) return;
   std::fill(nn_.begin(), nn_.end(), 0.0);
+  const bool measured = std::isfinite(travelled_in) && travelled_in > 0.0;
   for (int g = 0; g < index_.EdgeCount(); ++g) {
     for (const int dir : {+1, -1}) {
       const int s = State(g, dir);
       // At the far end of g: the robot is inside the next edge and will leave it at its
       // far end going back. (At the end of an open ring there is no next edge: dropped.)
       const int next = index_.Step(g, dir);
-      if (next >= 0) nn_[State(next, -dir)] += n_[s];
+      if (next >= 0 && n_[s] > 0.0) {
+        if (measured) {
+          ReverseAfter(next, dir, n_[s], travelled_in);
+        } else {
+          nn_[State(next, -dir)] += n_[s];
+        }
+      }
       // Inside wall g around a false door: going back it leaves g at g's start.
       nn_[State(g, -dir)] += i1_[s] + i2_[s];
     }
@@ -68,6 +79,47 @@ void BayesLocalizer::Reverse() {
   Normalise();
   above_ = above;
   status_ = status;
+}
+
+void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travelled_in) {
+  // The robot went travelled_in past the last sensed edge into `first` and on, seeing no
+  // door, then turned back. It is in the edge of the stretch ahead that holds that
+  // distance: every door before it was missed. The stretch ends where the follower would
+  // have turned (a corner) or at the end of an open ring; a reversal there (a hallway end)
+  // absorbs whatever odometry overshoots.
+  const auto below = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
+  const Confusion& cf = model_.confusion;
+  // Never less than the reversal without the distance would give: a stretch the map does
+  // not explain (a door the map lacks, a wrong odometer) must not empty the belief.
+  nn_[State(first, -dir)] += mass * model_.settings.outlier;
+  double start = 0.0, weight = 1.0;
+  int cur = first;
+  int missed = 0;
+  for (int m = 0; m < index_.EdgeCount() && cur >= 0; ++m) {
+    // A step's side runs across the hallway between corners of opposite sense: the base
+    // passes it without travelling along it.
+    const double a_in = index_.angle_start(cur), a_end = index_.angle_end(cur);
+    const bool side = index_.metric(cur) <= kStepSideIn && std::abs(a_in - 180.0) >= 45.0 &&
+                      std::abs(a_end - 180.0) >= 45.0 && (a_in - 180.0) * (a_end - 180.0) < 0.0;
+    const double len = side ? 0.0 : index_.metric(cur);
+    const double sigma = std::max(1.0, model_.noise.WallSigmaIn(start + len));
+    const int after = index_.Step(cur, dir);
+    const double a_out = dir > 0 ? index_.angle_end(cur) : index_.angle_start(cur);
+    // The follower turns at a corner, not at a step's corners (a pilaster's sides).
+    const bool last = after < 0 || (std::abs(a_out - 180.0) >= 45.0 &&
+                                    index_.metric(cur) > kStepSideIn &&
+                                    index_.metric(after) > kStepSideIn);
+    const double reach = below((travelled_in - start) / sigma);
+    const double beyond = last ? 0.0 : below((travelled_in - start - len) / sigma);
+    nn_[State(cur, -dir)] += mass * weight * std::max(0.0, reach - beyond);
+    if (last || start > travelled_in + 4.0 * sigma) break;
+    if (map::IsDoorCode(index_.code(cur))) {
+      if (++missed > model_.settings.max_missed_doors) break;
+      weight *= cf.missed;
+    }
+    start += len;
+    cur = after;
+  }
 }
 
 double BayesLocalizer::WallDensity(double measured, double true_len) const {

@@ -26,6 +26,7 @@
 // (edge, direction) holds at least `threshold` of the posterior.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "recovery/error_model.h"
@@ -62,7 +63,10 @@ class BayesLocalizer {
   // the next edge it has seen and reaches that edge's far end in the new direction. The
   // first sensed edge after the reversal, when it is a partial wall (that part seen
   // again, metric_is_lower_bound), is consumed without weighing it.
-  void Reverse();
+  // `travelled_in`, when known, is how far the robot went past the last sensed edge before
+  // it turned back: it may have passed further edges unseen (missed doors along a wall),
+  // and the place it turned in is weighed by that distance (ReverseAfter).
+  void Reverse(double travelled_in = std::numeric_limits<double>::quiet_NaN());
 
   RecoveryStatus status() const { return status_; }
   // The most probable (edge, direction) and its posterior.
@@ -81,6 +85,9 @@ class BayesLocalizer {
   void First(const map::SensedEdge& e);
   void Next(const map::SensedEdge& e);
   void Normalise();
+  // Reverse() of the mass at (the last sensed edge before `first`, dir), travelled_in into
+  // `first` and beyond: into nn_.
+  void ReverseAfter(int first, int dir, double mass, double travelled_in);
 
   const map::MatchIndex& index_;
   BayesModel model_;
