@@ -44,6 +44,28 @@ struct Every {
   }
 };
 
+// One trace line per change of the localizer's estimate: the newest sensed edge, the best
+// place with its probability, and where the robot truly is.
+void TraceBelief(double t, const localizer::Localizer& localizer, const map::HallwayView& view,
+                 const virtual_robot::WorldSim& sim, int ring, RunResult& result) {
+  if (result.behaviour_log.size() >= 400) return;
+  const localizer::PoseEstimate& e = localizer.estimate();
+  const std::vector<map::SensedEdge>& seq = localizer.sensed_sequence();
+  const std::string newest = seq.empty() ? "-" : map::Describe(seq.back());
+  const virtual_robot::SimTruth truth = sim.Truth();
+  std::string best = "no place";
+  if (!e.hypotheses.empty()) {
+    const localizer::Hypothesis& h = e.hypotheses.front();
+    best = fmt::format("view edge {} {} p={:.3f}", h.edge, h.dir > 0 ? "fwd" : "back",
+                       h.probability);
+  }
+  result.behaviour_log.push_back(fmt::format(
+      "{:7.1f} s  localizer {}: newest {}, best {}, truth view edge {} {}: {}", t,
+      localizer::ToString(e.status), newest, best,
+      view.ViewEdge(ring, truth.edge_index), truth.forward_in_ring ? "fwd" : "back",
+      e.message));
+}
+
 }  // namespace
 
 RunSetup LoadRunSetup(const std::string& config_dir, const std::string& map_file,
@@ -222,6 +244,7 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
         }
       } else if (localizer.Advance(odometer.distance_in(), odometer.pose().heading_rad)) {
         const localizer::PoseEstimate& e = localizer.estimate();
+        if (options.trace) TraceBelief(t, localizer, view, sim, ring, result);
         if (e.status == localizer::Status::kLocalized && !e.hypotheses.empty()) {
           if (!was_localized) {
             const Recovery r = judge(t);
