@@ -73,6 +73,56 @@ TEST_F(BayesLocalizerTest, ReversalCarriesTheBeliefToTheWayBack) {
   EXPECT_GT(b.best().probability, 0.99);
 }
 
+TEST_F(BayesLocalizerTest, ReversalFarPastTheLastEdgeIsPlacedByTheDistance) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Wall(150, kNaN, true));
+  b.Add(Door(DoorClass::k40));
+  b.Add(Wall(90));
+  ASSERT_EQ(b.best().edge, 8);
+  // The robot went 76 in past wall 8 seeing nothing: across door 9 (missed) into the 75 in
+  // wall 10, and turned back there.
+  b.Reverse(76.0);
+  EXPECT_EQ(b.best().edge, 10);
+  EXPECT_EQ(b.best().dir, -1);
+  b.Add(Wall(40, kNaN, true));  // the part of wall 10 seen again: not weighed
+  b.Add(Door(DoorClass::k36));  // door 9, seen this time
+  b.Add(Wall(90));
+  b.Add(Door(DoorClass::k40));
+  EXPECT_EQ(b.best().edge, 7);
+  EXPECT_EQ(b.best().dir, -1);
+  EXPECT_GT(b.best().probability, 0.99);
+  // Without the distance the belief turns back in wall 8's next edge, door 9, and the
+  // same sightings fit worse.
+  BayesLocalizer c = Make(ErrorModel::Paper());
+  c.Add(Wall(150, kNaN, true));
+  c.Add(Door(DoorClass::k40));
+  c.Add(Wall(90));
+  c.Reverse();
+  EXPECT_EQ(c.best().edge, 9);
+  c.Add(Wall(40, kNaN, true));
+  c.Add(Door(DoorClass::k36));
+  c.Add(Wall(90));
+  c.Add(Door(DoorClass::k40));
+  EXPECT_LT(c.PoseProbability(7, -1), b.best().probability);
+}
+
+TEST_F(BayesLocalizerTest, ReversalWithinTheNextEdgeIsTheSameWithOrWithoutTheDistance) {
+  BayesLocalizer with = Make(ErrorModel::Paper());
+  BayesLocalizer without = Make(ErrorModel::Paper());
+  for (BayesLocalizer* b : {&with, &without}) {
+    b->Add(Wall(150, kNaN, true));
+    b->Add(Door(DoorClass::k40));
+    b->Add(Wall(90));
+    b->Add(Door(DoorClass::k36));
+  }
+  // 40 in into the 75 in wall 10.
+  with.Reverse(40.0);
+  without.Reverse();
+  EXPECT_EQ(with.best().edge, without.best().edge);
+  EXPECT_EQ(with.best().dir, without.best().dir);
+  EXPECT_EQ(with.best().edge, 10);
+}
+
 TEST_F(BayesLocalizerTest, ConfirmationWaitsForTheThresholdToHoldOverMoreEdges) {
   BayesLocalizer now = Make(ErrorModel::Paper());
   BayesLocalizer later = Make(ErrorModel::Paper(), 0.99, 1);
