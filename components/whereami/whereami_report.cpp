@@ -13,6 +13,8 @@
 #include <thread>
 
 #include "common/input_error.h"
+#include "localizer/localizer_config.h"
+#include "stickrep/hallway_view.h"
 #include "recovery/study_report.h"
 #include "stickrep/map_render.h"
 
@@ -112,7 +114,13 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
                      options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
                      options.measure_ft);
   EdgeErrorCounts total;
+  int failed = 0;
   for (const RunResult& r : RunSeeds(setup, options)) {
+    if (r.failed) {
+      out << fmt::format("seed {:>4}  failed: {}\n", r.seed, r.ended);
+      ++failed;
+      continue;
+    }
     const EdgeErrorCounts& c = r.errors;
     out << fmt::format("seed {:>4}  {} true doors: {} correct, {} mis-sized, {} missed; {} true "
                        "walls, {} false doors\n",
@@ -156,6 +164,11 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
   out << "(Table 6.10 counts frames; ours counts the edges the localizer is given, after the "
          "frames of a door are voted into one edge)\n";
   if (!options.error_model_out.empty()) {
+    if (failed > 0 || total.true_doors == 0) {
+      out << fmt::format("no error model written: {} runs failed, {} true doors passed\n", failed,
+                         total.true_doors);
+      return 1;
+    }
     model.Validate();
     std::ofstream f(options.error_model_out);
     if (!f) throw InputError(options.error_model_out, 0, "--write-error-model", "cannot be written");
@@ -179,6 +192,10 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
         throw InputError(setup.map_file, 0, "--ring", "no ring '" + ring + "' in the map");
       }
     }
+    // Each run reads the observation model's files; a bad one is this tool's input error,
+    // not a failed run.
+    localizer::MakeLocalizerConfig(setup.localizer,
+                                   map::HallwayView(*setup.map, setup.localizer.view).view());
     if (options.measure_ft > 0.0) return Measure(setup, options, out);
     out << fmt::format(
         "Where-am-I runs without middleware: map '{}' ({}), seeds {}..{}, {:.0f} in hallway, "
