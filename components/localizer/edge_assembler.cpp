@@ -247,7 +247,6 @@ void EdgeAssembler::EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& ou
   wall.metric_in = wall_in;
   wall.metric_is_lower_bound = !last_jamb_in_.has_value();
   wall.angle_deg = pending_angle_deg_;
-  wall.camera_range_in = wall_range_in_;
   pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
   out.push_back(wall);
   sequence_.push_back(wall);
@@ -262,7 +261,6 @@ void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::Door
   pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
   door.code = map::DoorCode(door_class);
   door.metric_in = direction_ * (far_jamb_in - near_jamb_in);
-  door.camera_range_in = wall_range_in_;
   out.push_back(door);
   sequence_.push_back(door);
   spans_.push_back({near_jamb_in, far_jamb_in});

@@ -1,9 +1,6 @@
 #include "localizer/localizer_config.h"
 
-#include <cmath>
-
 #include "common/config_paths.h"
-#include "common/input_error.h"
 #include "localizer/sensed_doors.h"
 #include "recovery/error_model.h"
 #include "stickrep/sequence_matcher.h"
@@ -23,11 +20,6 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   }
   s.error_model_file = ResolvePath(c.Get<std::string>("error_model_file"), c.file());
   s.study_file = ResolvePath(c.Get<std::string>("study_file"), c.file());
-  if (c.Has("ranged_error_model_files")) {
-    for (const StrictYaml& f : c.Sequence("ranged_error_model_files")) {
-      s.ranged_error_model_files.push_back(ResolvePath(f.As<std::string>(), c.file()));
-    }
-  }
   config.tolerance.metric_rel = c.Get<double>("metric_tolerance_rel", 0.0, 1.0);
   config.tolerance.metric_abs_in = c.Get<double>("metric_tolerance_abs_in", 0.0, 120.0, "in");
   config.tolerance.angle_deg = 20.0;  // corners are sensed as turns of the odometry heading
@@ -54,19 +46,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     const recovery::ErrorModel errors = recovery::LoadErrorModel(settings.error_model_file);
     const recovery::StudyConfig study = recovery::LoadStudyConfig(settings.study_file);
     const map::MatchIndex index(matched);
-    config.bayes = recovery::BayesModel{};
-    config.bayes.confusion = recovery::Resolve(errors, index);
-    config.bayes.noise = study.noise;
-    config.bayes.settings = study.bayes;
-    config.bayes.confusion_range_in = errors.camera_range_in;
-    for (const std::string& file : settings.ranged_error_model_files) {
-      const recovery::ErrorModel ranged = recovery::LoadErrorModel(file);
-      if (!std::isfinite(ranged.camera_range_in)) {
-        throw InputError(file, 0, "error_model.camera_range_in",
-                         "a ranged error model must state the camera range it was measured at");
-      }
-      config.bayes.ranged.push_back({ranged.camera_range_in, recovery::Resolve(ranged, index)});
-    }
+    config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise, study.bayes};
     config.bayes.settings.threshold = settings.bayes_threshold;
     config.bayes.settings.outlier = settings.bayes_outlier;
     config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 #include "common/strict_yaml.h"
 #include "localizer/localizer.h"
@@ -17,9 +16,6 @@ struct LocalizerSettings {
   LocalizerConfig localizer;   // everything but the Bayes model
   map::HallwayViewConfig view;
   std::string error_model_file;  // resolved against the settings file
-  // Error models measured at other camera ranges (each file states its camera_range_in):
-  // the filter weighs each sensed edge with the model measured nearest its range.
-  std::vector<std::string> ranged_error_model_files;
   std::string study_file;
   double publish_rate_hz = 2.0;
   // The posterior the Bayes matcher needs to declare a pose (replaces the study's).

@@ -88,9 +88,7 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
   // have turned (a corner) or at the end of an open ring; a reversal there (a hallway end)
   // absorbs whatever odometry overshoots.
   const auto below = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
-  map::SensedEdge last;
-  last.camera_range_in = last_range_in_;
-  const Confusion& cf = ConfusionFor(last);
+  const Confusion& cf = model_.confusion;
   // Never less than the reversal without the distance would give: a stretch the map does
   // not explain (a door the map lacks, a wrong odometer) must not empty the belief.
   nn_[State(first, -dir)] += mass * model_.settings.outlier;
@@ -124,22 +122,6 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
   }
 }
 
-const Confusion& BayesLocalizer::ConfusionFor(const map::SensedEdge& e) const {
-  if (model_.ranged.empty() || !std::isfinite(e.camera_range_in)) return model_.confusion;
-  const Confusion* best = &model_.confusion;
-  double best_gap = std::isfinite(model_.confusion_range_in)
-                        ? std::abs(model_.confusion_range_in - e.camera_range_in)
-                        : std::numeric_limits<double>::infinity();
-  for (const BayesModel::Ranged& r : model_.ranged) {
-    const double gap = std::abs(r.camera_range_in - e.camera_range_in);
-    if (gap < best_gap) {
-      best_gap = gap;
-      best = &r.confusion;
-    }
-  }
-  return *best;
-}
-
 double BayesLocalizer::WallDensity(double measured, double true_len) const {
   const double sigma = std::max(1.0, model_.noise.WallSigmaIn(std::max(true_len, 0.0)));
   const double z = (measured - true_len) / sigma;
@@ -168,14 +150,13 @@ RecoveryStatus BayesLocalizer::Add(const map::SensedEdge& edge) {
   } else {
     Next(edge);
   }
-  last_range_in_ = edge.camera_range_in;
   ++edges_;
   Normalise();
   return status_;
 }
 
 void BayesLocalizer::First(const map::SensedEdge& e) {
-  const Confusion& cf = ConfusionFor(e);
+  const Confusion& cf = model_.confusion;
   const double eps = model_.settings.outlier;
   const bool door = map::IsDoorCode(e.code);
   const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
@@ -254,7 +235,7 @@ void BayesLocalizer::First(const map::SensedEdge& e) {
 }
 
 void BayesLocalizer::Next(const map::SensedEdge& e) {
-  const Confusion& cf = ConfusionFor(e);
+  const Confusion& cf = model_.confusion;
   const double eps = model_.settings.outlier;
   const bool door = map::IsDoorCode(e.code);
   const bool wall = e.code == map::kWallCode;

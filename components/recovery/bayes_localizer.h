@@ -40,15 +40,6 @@ struct BayesModel {
   Confusion confusion;
   SensingNoise noise;
   BayesSettings settings;
-  // The camera range `confusion` was measured at (NaN: any), and further confusions
-  // measured at other ranges: each sensed edge is weighed with the one measured nearest
-  // its camera_range_in (edges without a range, and models without any, use `confusion`).
-  double confusion_range_in = std::numeric_limits<double>::quiet_NaN();
-  struct Ranged {
-    double camera_range_in = 0.0;
-    Confusion confusion;
-  };
-  std::vector<Ranged> ranged;
 };
 
 struct PoseBelief {
@@ -94,8 +85,6 @@ class BayesLocalizer {
   void First(const map::SensedEdge& e);
   void Next(const map::SensedEdge& e);
   void Normalise();
-  // The confusion measured nearest the range the edge was sensed at.
-  const Confusion& ConfusionFor(const map::SensedEdge& e) const;
   // Reverse() of the mass at (the last sensed edge before `first`, dir), travelled_in into
   // `first` and beyond: into nn_.
   void ReverseAfter(int first, int dir, double mass, double travelled_in);
@@ -113,7 +102,6 @@ class BayesLocalizer {
   PoseBelief best_;
   int above_ = 0;  // consecutive edges the best place held the threshold
   bool skip_partial_ = false;  // after Reverse(): the re-seen partial edge is not evidence
-  double last_range_in_ = std::numeric_limits<double>::quiet_NaN();  // of the last edge added
   int edges_ = 0;
   std::uint64_t rejected_ = 0;
 };

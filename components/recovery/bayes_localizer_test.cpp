@@ -123,37 +123,6 @@ TEST_F(BayesLocalizerTest, ReversalWithinTheNextEdgeIsTheSameWithOrWithoutTheDis
   EXPECT_EQ(with.best().edge, 10);
 }
 
-TEST_F(BayesLocalizerTest, EachEdgeIsWeighedWithTheModelMeasuredNearestItsCameraRange) {
-  // Far from the wall (60 in) doors are rarely missed; near it (44 in) often.
-  ErrorModel far = ErrorModel::Paper();
-  far.door_correct = 0.95;
-  far.door_missized = 0.04;
-  far.door_missed = 0.01;
-  ErrorModel near = ErrorModel::Paper();
-  near.door_correct = 0.55;
-  near.door_missized = 0.15;
-  near.door_missed = 0.30;
-  BayesModel m;
-  m.confusion = Resolve(far, index_);
-  m.confusion_range_in = 60.0;
-  m.ranged.push_back({44.0, Resolve(near, index_)});
-  m.settings.outlier = 0.01;
-  // Door 7, then wall 8, door 9 (missed) and wall 10 sensed as one 201 in wall.
-  const auto truth_after = [&](double range_in) {
-    BayesLocalizer b(index_, m);
-    std::vector<map::SensedEdge> seq = {Door(DoorClass::k40), Wall(90 + 36 + 75)};
-    for (map::SensedEdge& e : seq) {
-      e.camera_range_in = range_in;
-      b.Add(e);
-    }
-    return b.PoseProbability(10, +1);
-  };
-  const double at_44 = truth_after(45.0), at_60 = truth_after(58.0);
-  EXPECT_GT(at_44, at_60) << at_44 << " " << at_60;
-  // An edge without a range is weighed with the default model.
-  EXPECT_DOUBLE_EQ(truth_after(kNaN), at_60);
-}
-
 TEST_F(BayesLocalizerTest, ConfirmationWaitsForTheThresholdToHoldOverMoreEdges) {
   BayesLocalizer now = Make(ErrorModel::Paper());
   BayesLocalizer later = Make(ErrorModel::Paper(), 0.99, 1);

@@ -131,9 +131,6 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
   if (node.Has("false_door_classes")) {
     m.false_door_classes = ReadDistribution(node.Child("false_door_classes"));
   }
-  if (node.Has("camera_range_in")) {
-    m.camera_range_in = node.Get<double>("camera_range_in", 6.0, 600.0, "in");
-  }
   node.Finish();
   root.Finish();
   return m;
@@ -390,9 +387,6 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
   }
   out += "  missized_to: " + missized + "}\n";
   out += "  false_door_classes: " + distribution(m.false_door_classes) + "\n";
-  if (std::isfinite(m.camera_range_in)) {
-    out += "  camera_range_in: " + number(m.camera_range_in) + "\n";
-  }
   return out;
 }
 

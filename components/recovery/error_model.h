@@ -14,7 +14,6 @@
 // line and key.
 
 #include <array>
-#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,9 +40,6 @@ struct ErrorModel {
   std::map<map::DoorClass, std::map<map::DoorClass, double>> missized_to;
   // The class distribution of false doors; empty: the map's door-class frequencies.
   std::map<map::DoorClass, double> false_door_classes;
-  // The camera's median range to the wall where the rates were measured (inches); NaN when
-  // the file does not say (the paper's table, a model for any range).
-  double camera_range_in = std::numeric_limits<double>::quiet_NaN();
 
   // The paper's rates (Table 6.10).
   static ErrorModel Paper() { return ErrorModel{}; }

@@ -2,9 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <limits>
-
 #include "common/input_error.h"
 #include "recovery/test_support.h"
 
@@ -53,7 +50,6 @@ TEST(ErrorModelFile, WrittenModelReadsBackTheSame) {
   m.wall_false_door = 0.05;
   m.missized_to[DoorClass::k36] = {{DoorClass::k40, 0.75}, {DoorClass::k32, 0.25}};
   m.false_door_classes = {{DoorClass::k30, 0.5}, {DoorClass::k40, 0.5}};
-  m.camera_range_in = 44.5;
   const std::string text = FormatErrorModelYaml(m, "first line\nsecond line");
   EXPECT_EQ(text.rfind("# first line\n# second line\nerror_model:\n", 0), 0u) << text;
   const ErrorModel back = ParseErrorModel(text, "written.yaml");
@@ -62,12 +58,6 @@ TEST(ErrorModelFile, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.wall_false_door, 0.05);
   EXPECT_DOUBLE_EQ(back.missized_to.at(DoorClass::k36).at(DoorClass::k40), 0.75);
   EXPECT_DOUBLE_EQ(back.false_door_classes.at(DoorClass::k30), 0.5);
-  EXPECT_DOUBLE_EQ(back.camera_range_in, 44.5);
-  // Without a range the file says none, and reads back as none.
-  m.camera_range_in = std::numeric_limits<double>::quiet_NaN();
-  const std::string plain = FormatErrorModelYaml(m, "");
-  EXPECT_EQ(plain.find("camera_range_in"), std::string::npos);
-  EXPECT_TRUE(std::isnan(ParseErrorModel(plain, "plain.yaml").camera_range_in));
 }
 
 TEST(ErrorModelFile, DoorRatesMustSumToOne) {

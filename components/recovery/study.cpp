@@ -183,10 +183,8 @@ DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
         if (spec.error_free) rc.base_tolerance = exact;
         r.recovery = std::make_unique<PoseRecovery>(index, rc);
       } else {
-        BayesModel bm;
-        bm.confusion = spec.error_free ? clean : modeled;
-        bm.noise = spec.error_free ? quiet : cfg.noise;
-        bm.settings = cfg.bayes;
+        BayesModel bm{spec.error_free ? clean : modeled, spec.error_free ? quiet : cfg.noise,
+                      cfg.bayes};
         r.bayes = std::make_unique<BayesLocalizer>(index, bm);
       }
       runners.push_back(std::move(r));

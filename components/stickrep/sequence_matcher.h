@@ -44,11 +44,6 @@ struct SensedEdge {
   double angle_deg = std::numeric_limits<double>::quiet_NaN();
   // The robot started inside this edge and saw only part of it: the metric is a lower bound.
   bool metric_is_lower_bound = false;
-  // The coaxial sonar's range to the wall the camera looked at while the edge was sensed
-  // (inches); NaN when unknown. How well doors are seen depends on it (a door whole in
-  // view for fewer frames nearer the wall): the Bayes filter weighs the edge with the
-  // error model measured nearest this range.
-  double camera_range_in = std::numeric_limits<double>::quiet_NaN();
 };
 
 // One sensed edge in words, for logs and traces: "door36", "wall:46", "<270> wall:130".

@@ -19,18 +19,11 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
     for (int s = 0; s < map::kDoorClassCount; ++s) missized_to[t][s] += o.missized_to[t][s];
   }
   wall_error_in.insert(wall_error_in.end(), o.wall_error_in.begin(), o.wall_error_in.end());
-  camera_range_in.insert(camera_range_in.end(), o.camera_range_in.begin(),
-                         o.camera_range_in.end());
 }
 
 recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
   recovery::ErrorModel m;
   m.source = source;
-  if (!camera_range_in.empty()) {
-    std::vector<double> r = camera_range_in;
-    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
-    m.camera_range_in = r[r.size() / 2];
-  }
   const double doors = std::max<long>(1, true_doors);
   m.door_correct = correct / doors;
   m.door_missized = missized / doors;
@@ -57,16 +50,19 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
   return m;
 }
 
-namespace {
-
-// Where a true edge was seen: the odometer range of its run of samples.
-struct Passage {
-  int edge;
-  double first_in, last_in;
-};
-
-// The true edges passed, in order; an edge passed twice (a lap) is taken once per pass.
-std::vector<Passage> Passages(const std::vector<TruthSample>& truth) {
+EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
+                                 const std::vector<map::SensedEdge>& sensed,
+                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
+                                 const std::vector<TruthSample>& truth, double from_in,
+                                 double to_in) {
+  EdgeErrorCounts c;
+  const double lo = std::min(from_in, to_in), hi = std::max(from_in, to_in);
+  // Where each true edge was seen: the odometer range of its run of samples. An edge passed
+  // twice (a lap) is taken once per pass.
+  struct Passage {
+    int edge;
+    double first_in, last_in;
+  };
   std::vector<Passage> passed;
   for (const TruthSample& s : truth) {
     if (s.view_edge < 0) continue;
@@ -76,26 +72,12 @@ std::vector<Passage> Passages(const std::vector<TruthSample>& truth) {
       passed.back().last_in = s.odometer_in;
     }
   }
-  return passed;
-}
-
-}  // namespace
-
-EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
-                                 const std::vector<map::SensedEdge>& sensed,
-                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
-                                 const std::vector<TruthSample>& truth, double from_in,
-                                 double to_in) {
-  EdgeErrorCounts c;
-  const double lo = std::min(from_in, to_in), hi = std::max(from_in, to_in);
-  const std::vector<Passage> passed = Passages(truth);
   // Sensed doors by the true edge their centre lay on.
   std::map<int, std::vector<std::size_t>> doors_on;  // passage index -> sensed indices
   for (std::size_t i = 0; i < sensed.size() && i < spans.size(); ++i) {
+    if (!map::IsDoorCode(sensed[i].code)) continue;
     const double centre = 0.5 * (spans[i].from_in + spans[i].to_in);
     if (centre < lo || centre > hi) continue;
-    if (std::isfinite(sensed[i].camera_range_in)) c.camera_range_in.push_back(sensed[i].camera_range_in);
-    if (!map::IsDoorCode(sensed[i].code)) continue;
     for (std::size_t p = 0; p < passed.size(); ++p) {
       const double a = std::min(passed[p].first_in, passed[p].last_in);
       const double b = std::max(passed[p].first_in, passed[p].last_in);

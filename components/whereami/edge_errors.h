@@ -32,9 +32,6 @@ struct EdgeErrorCounts {
   std::array<long, map::kDoorClassCount> false_class{};
   // Sensed minus true length of walls between two doors that were both sensed correctly.
   std::vector<double> wall_error_in;
-  // The camera's range to the wall of each sensed edge counted (the model's
-  // camera_range_in is their median).
-  std::vector<double> camera_range_in;
 
   void Add(const EdgeErrorCounts& other);
   // The rates as an error model (door rates per true door, false doors per true wall).
