@@ -50,19 +50,16 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
   return m;
 }
 
-EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
-                                 const std::vector<map::SensedEdge>& sensed,
-                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
-                                 const std::vector<TruthSample>& truth, double from_in,
-                                 double to_in) {
-  EdgeErrorCounts c;
-  const double lo = std::min(from_in, to_in), hi = std::max(from_in, to_in);
-  // Where each true edge was seen: the odometer range of its run of samples. An edge passed
-  // twice (a lap) is taken once per pass.
-  struct Passage {
-    int edge;
-    double first_in, last_in;
-  };
+namespace {
+
+// Where a true edge was seen: the odometer range of its run of samples.
+struct Passage {
+  int edge;
+  double first_in, last_in;
+};
+
+// The true edges passed, in order; an edge passed twice (a lap) is taken once per pass.
+std::vector<Passage> Passages(const std::vector<TruthSample>& truth) {
   std::vector<Passage> passed;
   for (const TruthSample& s : truth) {
     if (s.view_edge < 0) continue;
@@ -72,6 +69,19 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       passed.back().last_in = s.odometer_in;
     }
   }
+  return passed;
+}
+
+}  // namespace
+
+EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
+                                 const std::vector<map::SensedEdge>& sensed,
+                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
+                                 const std::vector<TruthSample>& truth, double from_in,
+                                 double to_in) {
+  EdgeErrorCounts c;
+  const double lo = std::min(from_in, to_in), hi = std::max(from_in, to_in);
+  const std::vector<Passage> passed = Passages(truth);
   // Sensed doors by the true edge their centre lay on.
   std::map<int, std::vector<std::size_t>> doors_on;  // passage index -> sensed indices
   for (std::size_t i = 0; i < sensed.size() && i < spans.size(); ++i) {
