@@ -89,8 +89,9 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
   // absorbs whatever odometry overshoots.
   const auto below = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
   const Confusion& cf = model_.confusion;
-  // Never less than the reversal without the distance would give: a stretch the map does
-  // not explain (a door the map lacks, a wrong odometer) must not empty the belief.
+  // An outlier's share stays where the reversal without the distance would put it: a
+  // stretch the map does not explain (a door the map lacks, a wrong odometer) must not
+  // empty the belief.
   nn_[State(first, -dir)] += mass * model_.settings.outlier;
   double start = 0.0, weight = 1.0;
   int cur = first;
