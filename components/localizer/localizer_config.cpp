@@ -50,6 +50,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes.settings.threshold = settings.bayes_threshold;
     config.bayes.settings.outlier = settings.bayes_outlier;
     config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;
+    config.bayes.settings.max_step_in = settings.view.max_step_in;
   }
   return config;
 }

@@ -15,10 +15,6 @@ constexpr double kOutlierSpanIn = 120.0;
 // a chain of unexplained edges, each of which costs `outlier`.
 constexpr double kPruneBelow = 1e-15;
 
-// The sides of a step in the wall the follower passes straight (a pilaster standing out,
-// a shallow recess: the localizer's max_step_in).
-constexpr double kStepSideIn = 36.0;
-
 bool Coplanar(double angle_deg) { return std::abs(angle_deg - 180.0) < 1.0; }
 
 double ClassWidth(map::SymbolCode code) {
@@ -100,7 +96,8 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
     // A step's side runs across the hallway between corners of opposite sense: the base
     // passes it without travelling along it.
     const double a_in = index_.angle_start(cur), a_end = index_.angle_end(cur);
-    const bool side = index_.metric(cur) <= kStepSideIn && std::abs(a_in - 180.0) >= 45.0 &&
+    const double step_in = model_.settings.max_step_in;
+    const bool side = index_.metric(cur) <= step_in && std::abs(a_in - 180.0) >= 45.0 &&
                       std::abs(a_end - 180.0) >= 45.0 && (a_in - 180.0) * (a_end - 180.0) < 0.0;
     const double len = side ? 0.0 : index_.metric(cur);
     const double sigma = std::max(1.0, model_.noise.WallSigmaIn(start + len));
@@ -108,8 +105,8 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
     const double a_out = dir > 0 ? index_.angle_end(cur) : index_.angle_start(cur);
     // The follower turns at a corner, not at a step's corners (a pilaster's sides).
     const bool last = after < 0 || (std::abs(a_out - 180.0) >= 45.0 &&
-                                    index_.metric(cur) > kStepSideIn &&
-                                    index_.metric(after) > kStepSideIn);
+                                    index_.metric(cur) > step_in &&
+                                    index_.metric(after) > step_in);
     const double reach = below((travelled_in - start) / sigma);
     const double beyond = last ? 0.0 : below((travelled_in - start - len) / sigma);
     nn_[State(cur, -dir)] += mass * weight * std::max(0.0, reach - beyond);

@@ -105,6 +105,10 @@ struct BayesSettings {
   // Further edges over which the best place must keep the threshold before it is reported
   // (0: at once, as the study does).
   int confirm_edges = 0;
+  // Steps in a wall the follower passes straight (a pilaster's or shallow recess's sides up
+  // to this long): a reversal's distance does not run along them. The localizer sets it to
+  // its hallway view's max_step_in.
+  double max_step_in = 36.0;
 };
 
 struct StudyConfig {

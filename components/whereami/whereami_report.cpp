@@ -14,8 +14,8 @@
 
 #include "common/input_error.h"
 #include "localizer/localizer_config.h"
-#include "stickrep/hallway_view.h"
 #include "recovery/study_report.h"
+#include "stickrep/hallway_view.h"
 #include "stickrep/map_render.h"
 
 namespace stickrep::whereami {
