@@ -19,6 +19,13 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
     for (int s = 0; s < map::kDoorClassCount; ++s) missized_to[t][s] += o.missized_to[t][s];
   }
   wall_error_in.insert(wall_error_in.end(), o.wall_error_in.begin(), o.wall_error_in.end());
+  for (const auto& [width, t] : o.by_width) {
+    DoorTally& mine = by_width[width];
+    mine.passed += t.passed;
+    mine.correct += t.correct;
+    mine.missized += t.missized;
+    mine.missed += t.missed;
+  }
 }
 
 recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
@@ -107,17 +114,22 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
     const auto it = doors_on.find(static_cast<int>(p));
     if (edge.door_class) {
       ++c.true_doors;
+      EdgeErrorCounts::DoorTally& tally = c.by_width[static_cast<int>(std::lround(edge.metric_in))];
+      ++tally.passed;
       if (it == doors_on.end()) {
         ++c.missed;
+        ++tally.missed;
         continue;
       }
       const std::size_t first = it->second.front();
       const map::SymbolCode want = map::DoorCode(*edge.door_class);
       if (sensed[first].code == want) {
         ++c.correct;
+        ++tally.correct;
         matched[p] = first;
       } else {
         ++c.missized;
+        ++tally.missized;
         c.missized_to[static_cast<int>(*edge.door_class)][sensed[first].code - 1]++;
       }
       // More sensed doors on the same true door are false doors as well.

@@ -7,6 +7,7 @@
 // configs/error_model_paper.yaml, for the Bayes matcher.
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,13 @@ struct EdgeErrorCounts {
   std::array<long, map::kDoorClassCount> false_class{};
   // Sensed minus true length of walls between two doors that were both sensed correctly.
   std::vector<double> wall_error_in;
+  // The true doors by their width (inches, rounded): passed, sensed with their class,
+  // mis-sized, missed. A door wider than the camera's view at the wall's range is never
+  // whole in one frame; this shows which widths the pipeline sees.
+  struct DoorTally {
+    long passed = 0, correct = 0, missized = 0, missed = 0;
+  };
+  std::map<int, DoorTally> by_width;
 
   void Add(const EdgeErrorCounts& other);
   // The rates as an error model (door rates per true door, false doors per true wall).

@@ -161,6 +161,12 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
                        total.wall_error_in.size(), mean,
                        std::sqrt(sq / std::max<std::size_t>(1, total.wall_error_in.size() - 1)));
   }
+  out << "  by door width (in): passed, with their class, mis-sized, missed\n";
+  for (const auto& [width, t] : total.by_width) {
+    out << fmt::format("    {:>3}  {:>5} {:>5} {:>5} {:>5}  ({:.0f} % missed)\n", width, t.passed,
+                       t.correct, t.missized, t.missed,
+                       100.0 * t.missed / std::max<long>(1, t.passed));
+  }
   out << "(Table 6.10 counts frames; ours counts the edges the localizer is given, after the "
          "frames of a door are voted into one edge)\n";
   if (!options.error_model_out.empty()) {
