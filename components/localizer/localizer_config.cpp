@@ -31,6 +31,9 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.view.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
   s.view.max_bend_deg = c.Get<double>("max_bend_deg", 0.0, 60.0, "deg");
   s.view.sensed_door_class = SensedDoorClass;
+  s.view.hallway_width_in = c.Get<double>("hallway_width_in", 24.0, 600.0, "in");
+  s.view.max_recess_in = c.Get<double>("max_recess_in", 0.0, 600.0, "in");
+  s.view.door_view_margin_in = c.Get<double>("door_view_margin_in", 0.0, 60.0, "in");
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
   s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);

@@ -47,10 +47,11 @@ class LocalizerNode : public runtime::ProcessNode {
  public:
   void Configure(runtime::NodeContext& ctx) override {
     ctx_ = &ctx;
-    const LocalizerSettings settings = LoadLocalizerSettings(ctx.config);
+    LocalizerSettings settings = LoadLocalizerSettings(ctx.config);
+    const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
+    settings.view.camera_fov_deg = robot.camera.fov_deg;  // doors too wide to see whole
     view_ = std::make_unique<map::HallwayView>(map::LoadMap(ctx.system.map_file), settings.view);
     const map::Map& matched = view_->view();
-    const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
     coaxial_sensor_ = robot.camera.coaxial_sensor;
     head_radius_in_ = robot.sonar_ring.head_radius_in;
     const LocalizerConfig config = MakeLocalizerConfig(settings, matched);

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "common/units.h"
 
 namespace stickrep::map {
 
@@ -13,20 +16,38 @@ bool IsCorner(double angle_deg) { return std::abs(angle_deg - 180.0) > 1.0; }
 
 }  // namespace
 
-Edge HallwayView::Sensed(const Edge& e) const {
+double HallwayView::WidestSeenDoorIn(int r) const {
+  if (config_.camera_fov_deg <= 0.0) return std::numeric_limits<double>::infinity();
+  const double width = original_.ring(r).width_in.value_or(config_.hallway_width_in);
+  const double half_fov = DegToRad(0.5 * config_.camera_fov_deg);
+  return width * std::tan(half_fov) - config_.door_view_margin_in;  // 2 (width / 2) tan
+}
+
+Edge HallwayView::Sensed(int r, const Edge& e) const {
   if (e.IsOpening()) return Edge::Wall(e.metric_in);  // passed along the wall
-  if (e.IsDoor() && config_.sensed_door_class) {
+  if (!e.IsDoor()) return e;
+  Edge door = e;
+  if (config_.sensed_door_class) {
     // A width the detector rejects keeps the map's class: the detector's width error still
     // lets it see some of those doors, as the nearest class.
     const std::optional<DoorClass> c = config_.sensed_door_class(e.metric_in);
-    Edge door = e;
     if (c) door.door_class = *c;
-    return door;
   }
-  return e;
+  const double leaf_in = IsDoubleDoor(*door.door_class) ? 0.5 * e.metric_in : e.metric_in;
+  if (leaf_in > WidestSeenDoorIn(r)) return Edge::Wall(e.metric_in);
+  return door;
 }
 
-bool HallwayView::WallLike(const Edge& e) const { return Sensed(e).IsWall(); }
+double HallwayView::BendTravelIn(int r, const Node& bend) const {
+  // The base follows a bend of the wall on a path parallel to it, half the hallway's width
+  // out. At a bend that turns the wall toward the free space (angle over 180°: the base
+  // turns left, inside the bend) that path is shorter than the wall by 2 d tan(turn / 2);
+  // at one that turns away (under 180°, the base outside it) longer by as much.
+  const double d = 0.5 * original_.ring(r).width_in.value_or(config_.hallway_width_in);
+  return -2.0 * d * std::tan(DegToRad(0.5 * (bend.angle_deg - 180.0)));
+}
+
+bool HallwayView::WallLike(int r, const Edge& e) const { return Sensed(r, e).IsWall(); }
 
 bool HallwayView::IsStep(int r, int e) const {
   const Ring& ring = original_.ring(r);
@@ -42,6 +63,55 @@ bool HallwayView::IsStep(int r, int e) const {
          std::abs(a.angle_deg + b.angle_deg - 360.0) < 1.0;
 }
 
+bool HallwayView::IsRecessSide(int r, int e) const {
+  if (config_.max_recess_in <= 0.0) return false;
+  const Ring& ring = original_.ring(r);
+  const int n = ring.EdgeCount(), nodes = ring.NodeCount();
+  const Edge& side = ring.edges[e];
+  const Node& a = ring.nodes[e];
+  const Node& b = ring.nodes[(e + 1) % nodes];
+  if (!side.IsWall() || a.artificial || b.artificial) return false;
+  if (!IsCorner(a.angle_deg) || std::abs(a.angle_deg + b.angle_deg - 360.0) >= 1.0) return false;
+  // Shallower steps are IsStep's, whichever way they turn.
+  if (side.metric_in < config_.max_step_in) return false;
+  if (side.metric_in >= ring.width_in.value_or(config_.hallway_width_in)) return false;
+  // Entering (a convex corner, then a concave one: the wall turns away from the hallway) the
+  // recess lies ahead in ring order; leaving it, behind.
+  const int dir = a.angle_deg < 180.0 ? +1 : -1;
+  double back_in = 0.0;
+  for (int k = e + dir, walked = 0; walked < n; k += dir, ++walked) {
+    if (!ring.closed && (k < 0 || k >= n)) return false;
+    k = (k + n) % n;
+    if (k == e) return false;
+    const Node& behind = ring.nodes[dir > 0 ? k : (k + 1) % nodes];  // between k and the last
+    if (behind.artificial) return false;
+    if (walked > 0 && IsCorner(behind.angle_deg)) {
+      // The other side: the same depth, turned back the other way.
+      const Edge& other = ring.edges[k];
+      const Node& far = ring.nodes[dir > 0 ? (k + 1) % nodes : k];
+      if (!other.IsWall() || far.artificial || back_in <= 0.0 ||
+          std::abs(other.metric_in - side.metric_in) >= 1.0 ||
+          std::abs(behind.angle_deg - (dir > 0 ? b.angle_deg : a.angle_deg)) >= 1.0 ||
+          std::abs(far.angle_deg - (dir > 0 ? a.angle_deg : b.angle_deg)) >= 1.0) {
+        return false;
+      }
+      // The wall either side is the one the follower tracks: together longer than the
+      // recess (else the "recess" is the wall between two blocks standing out from it, and
+      // the follower turns at each block).
+      const int entry = dir > 0 ? e : k, exit = dir > 0 ? k : e;
+      if (!ring.closed && (entry == 0 || exit == n - 1)) return false;
+      const double outside_in =
+          ring.edges[(entry - 1 + n) % n].metric_in + ring.edges[(exit + 1) % n].metric_in;
+      return outside_in >= back_in;
+    }
+    const Edge& piece = ring.edges[k];
+    if (!piece.IsWall() && !piece.IsDoor()) return false;
+    back_in += piece.metric_in;
+    if (back_in > config_.max_recess_in) return false;
+  }
+  return false;
+}
+
 HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
     : config_(config), original_(map) {
   std::vector<Ring> rings;
@@ -51,7 +121,9 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
     const Ring& ring = map.ring(r);
     const int n = ring.EdgeCount();
     std::vector<bool> step(n);
-    for (int e = 0; e < n; ++e) step[e] = config_.max_step_in > 0.0 && IsStep(r, e);
+    for (int e = 0; e < n; ++e) {
+      step[e] = (config_.max_step_in > 0.0 && IsStep(r, e)) || IsRecessSide(r, e);
+    }
     // Whether kept edge e continues the view edge of the kept edge before it: only steps
     // lie between them and both are walls.
     const auto prev = [&](int e) { return ring.closed ? (e - 1 + n) % n : e - 1; };
@@ -64,9 +136,9 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
       if (step[e]) return false;
       int p = prev(e);
       if (p < 0) return false;
-      if (!step[p]) return bend(e) && WallLike(ring.edges[p]) && WallLike(ring.edges[e]);
+      if (!step[p]) return bend(e) && WallLike(r, ring.edges[p]) && WallLike(r, ring.edges[e]);
       while (p >= 0 && step[p] && p != e) p = ring.closed || p > 0 ? prev(p) : -1;
-      return p >= 0 && p != e && WallLike(ring.edges[p]) && WallLike(ring.edges[e]);
+      return p >= 0 && p != e && WallLike(r, ring.edges[p]) && WallLike(r, ring.edges[e]);
     };
     // Start at a kept edge that begins a view edge.
     int start = -1;
@@ -99,6 +171,7 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
       }
       if (!members.empty() && k > 0 && merges(e)) {
         out.edges.back().metric_in += ring.edges[e].metric_in;
+        if (!step[prev(e)]) out.edges.back().metric_in += BendTravelIn(r, ring.nodes[e]);
         members.back().push_back(e);
         view_of[e] = static_cast<int>(members.size()) - 1;
         continue;
@@ -111,7 +184,7 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
       }
       node_of[r][e] = static_cast<int>(out.nodes.size());
       out.nodes.push_back(node);
-      out.edges.push_back(Sensed(ring.edges[e]));
+      out.edges.push_back(Sensed(r, ring.edges[e]));
       members.push_back({e});
       view_of[e] = static_cast<int>(members.size()) - 1;
     }

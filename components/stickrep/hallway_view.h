@@ -8,8 +8,9 @@
 // either side merge into one (lengths along the hallway add), and the localizer matches
 // sensed edges against the view. Likewise walls joined at shallow bends (curved walls as
 // chords) merge, openings (map format 2) are passed as wall, and corners of any other angle
-// become the 90° or 270° turn the follower makes there. Positions in the view map back to
-// the map's own edges.
+// become the 90° or 270° turn the follower makes there. A door too wide for the camera to
+// see whole from the hallway's axis is passed as wall too. Positions in the view map back
+// to the map's own edges.
 
 #include <functional>
 #include <optional>
@@ -34,6 +35,27 @@ struct HallwayViewConfig {
   // measured width, map format 2, is what the robot will call it), or as wall. Empty: the
   // map's classes as they are.
   std::function<std::optional<DoorClass>(double width_in)> sensed_door_class;
+  // The camera stares at the wall the robot follows from the hallway's axis, half the
+  // hallway's width away, where its horizontal field of view covers 2 r tan(fov / 2) of wall
+  // (46.6 in in an 88 in corridor, 63.6 in in the text's 120 in hallways). The detector
+  // pairs two jambs seen in one frame (Figure 4.1), so a door (a double door: each leaf)
+  // whose opening plus door_view_margin_in is wider than that is never reported: the view
+  // has it as wall. 0: every door is seen.
+  double camera_fov_deg = 0.0;
+  // The casings either side (the casing rule needs all four edges in the frame) and the
+  // travel over the frames a door must be seen in. Measured per door width with
+  // stickrep-whereami --measure-ft (docs/whereami.md): at 44 in from the wall 36 in doors
+  // are seen and 40-48 in ones never; at 48 in, 38 in seen, 40 in half the time, 42 and 44 in
+  // never; at 60 in, 40 in doors are seen.
+  double door_view_margin_in = 10.0;
+  // The hallway's width along rings whose map gives none (Ring::width_in).
+  double hallway_width_in = 120.0;
+  // A recess of the wall (an alcove: the wall turns away from the hallway, runs on, and
+  // turns back by the same depth) whose back, doors included, is at most this long is
+  // passed straight at any depth under the hallway's width: the follower holds its track
+  // across it (locomotion's reinit_recess_in, 96 in), and odometry sees one wall with the
+  // doors at its back. Both sides go as steps do. 0: only max_step_in steps.
+  double max_recess_in = 96.0;
 };
 
 class HallwayView {
@@ -69,10 +91,18 @@ class HallwayView {
  private:
   // Whether original edge `e` of ring `r` is a step.
   bool IsStep(int r, int e) const;
-  // An edge as the follower and the detector sense it: an opening as wall, a door as the
-  // class the detector reports for its width (or wall).
-  Edge Sensed(const Edge& e) const;
-  bool WallLike(const Edge& e) const;
+  // Whether original edge `e` of ring `r` is a side of a recess the follower passes
+  // straight (HallwayViewConfig::max_recess_in).
+  bool IsRecessSide(int r, int e) const;
+  // An edge of ring `r` as the follower and the detector sense it: an opening as wall, a
+  // door as the class the detector reports for its width, or as wall when the camera cannot
+  // see it whole.
+  Edge Sensed(int r, const Edge& e) const;
+  bool WallLike(int r, const Edge& e) const;
+  // The widest door opening (one leaf of a double door) the camera sees whole along ring r.
+  double WidestSeenDoorIn(int r) const;
+  // What the base's odometer travels beyond the wall's length at bend `bend` of ring r.
+  double BendTravelIn(int r, const Node& bend) const;
 
   HallwayViewConfig config_;
   Map original_;

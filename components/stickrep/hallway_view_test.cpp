@@ -1,5 +1,8 @@
 #include "stickrep/hallway_view.h"
 
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "stickrep/map_io.h"
@@ -164,12 +167,14 @@ TEST(HallwayViewTest, ShallowBendsAndOpeningsAreOneWallAndCornersAreTurns) {
   const Map map = ParseMap(kBends, "bends.yaml");
   const HallwayView view(map);
   const Ring& r = view.view().ring(0);
-  // wall 100+50+50+50+80+40 | door 36 | wall 60+60
+  // wall 100+50+50+50+80+40 | door 36 | wall 60+60, as the odometer travels them 60 in out
+  // from the wall (the default 120 in hallway): outside each 10 deg bend 2 x 60 tan(5 deg)
+  // = 10.50 in more, outside the 150 deg one 2 x 60 tan(15 deg) = 32.15 in more.
   ASSERT_EQ(r.EdgeCount(), 3);
   EXPECT_TRUE(r.edges[0].IsWall());
-  EXPECT_DOUBLE_EQ(r.edges[0].metric_in, 370.0);
+  EXPECT_NEAR(r.edges[0].metric_in, 370.0 + 3 * 10.4985, 0.01);
   EXPECT_TRUE(r.edges[1].IsDoor());
-  EXPECT_DOUBLE_EQ(r.edges[2].metric_in, 120.0);
+  EXPECT_NEAR(r.edges[2].metric_in, 120.0 + 32.1539, 0.01);
   EXPECT_DOUBLE_EQ(r.nodes[2].angle_deg, 90.0);  // 120 deg: the follower turns toward the wall
   EXPECT_EQ(view.OriginalEdges(0, 0), (std::vector<int>{0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(view.OriginalEdges(0, 2), (std::vector<int>{7, 8}));
@@ -177,10 +182,140 @@ TEST(HallwayViewTest, ShallowBendsAndOpeningsAreOneWallAndCornersAreTurns) {
   const HallwayView::Place p = view.ToOriginal(0, 0, +1, 260.0);
   EXPECT_EQ(p.edge, 4);
   EXPECT_DOUBLE_EQ(p.offset_in, 10.0);
+  // The wall bent the other way (toward the free space): the base passes inside the bends.
+  std::string inside = kBends;
+  for (std::size_t at; (at = inside.find("angle_deg: 170")) != std::string::npos;) {
+    inside.replace(at, 14, "angle_deg: 190");
+  }
+  EXPECT_NEAR(HallwayView(ParseMap(inside, "inside.yaml")).view().ring(0).edges[0].metric_in,
+              370.0 - 3 * 10.4985, 0.01);
   // With bends kept, every chord is its own wall and the 150 deg corner a turn.
   const HallwayView sharp(map, HallwayViewConfig{36.0, 5.0, {}});
   EXPECT_EQ(sharp.view().ring(0).EdgeCount(), 7);
   EXPECT_DOUBLE_EQ(sharp.view().ring(0).nodes[6].angle_deg, 90.0);
+}
+
+// One side of an 88 in corridor: a 36 in door, a 44 in door and a 72 in double door.
+const char* kNarrowCorridor = R"(stickrep_map: 2
+name: narrow
+rings:
+  - id: side
+    closed: false
+    width_in: 88
+    path:
+      - node: {angle_deg: 180, xyz_in: [0, 0, 0]}
+      - edge: {type: hallway, metric_in: 100}
+      - node: {angle_deg: 180, xyz_in: [100, 0, 0]}
+      - edge: {type: doorway, width_in: 36}
+      - node: {angle_deg: 180, xyz_in: [136, 0, 0]}
+      - edge: {type: hallway, metric_in: 50}
+      - node: {angle_deg: 180, xyz_in: [186, 0, 0]}
+      - edge: {type: doorway, width_in: 44}
+      - node: {angle_deg: 180, xyz_in: [230, 0, 0]}
+      - edge: {type: hallway, metric_in: 70}
+      - node: {angle_deg: 180, xyz_in: [300, 0, 0]}
+      - edge: {type: doorway, class: "36/36"}
+      - node: {angle_deg: 180, xyz_in: [372, 0, 0]}
+      - edge: {type: hallway, metric_in: 28}
+      - node: {angle_deg: 180, xyz_in: [400, 0, 0]}
+)";
+
+std::vector<double> Metrics(const Ring& r) {
+  std::vector<double> m;
+  for (const Edge& e : r.edges) m.push_back(e.IsDoor() ? -e.metric_in : e.metric_in);
+  return m;
+}
+
+TEST(HallwayViewTest, ADoorTooWideForTheCameraFromTheAxisIsWall) {
+  const Map map = ParseMap(kNarrowCorridor, "narrow.yaml");
+  HallwayViewConfig config;
+  // Without the camera every door is a door (doors negative).
+  EXPECT_EQ(Metrics(HallwayView(map, config).view().ring(0)),
+            (std::vector<double>{100, -36, 50, -44, 70, -72, 28}));
+  // 44 in from the wall a 55.8 deg view covers 46.6 in; with 10 in for the casings and the
+  // frames, a 36 in door and each 36 in leaf are seen, the 44 in door never: it is wall,
+  // one wall with the walls either side (50 + 44 + 70).
+  config.camera_fov_deg = 55.817;
+  config.door_view_margin_in = 10.0;
+  const HallwayView narrow(map, config);
+  EXPECT_EQ(Metrics(narrow.view().ring(0)), (std::vector<double>{100, -36, 164, -72, 28}));
+  EXPECT_EQ(narrow.OriginalEdges(0, 2), (std::vector<int>{2, 3, 4}));
+  // The same corridor 120 in wide (the ring's width unknown: the settings' default): the
+  // view covers 63.6 in and every door is seen.
+  std::string text = kNarrowCorridor;
+  text.erase(text.find("    width_in: 88\n"), std::string("    width_in: 88\n").size());
+  config.hallway_width_in = 120.0;
+  EXPECT_EQ(Metrics(HallwayView(ParseMap(text, "wide.yaml"), config).view().ring(0)),
+            (std::vector<double>{100, -36, 50, -44, 70, -72, 28}));
+}
+
+// One side of a hallway with a 48 in deep alcove holding two 36 in doors (its back 96 in
+// long), then two blocks standing 48 in out with an 80 in wall between them.
+const char* kAlcoveAndBlocks = R"(stickrep_map: 2
+name: alcove
+rings:
+  - id: alcove
+    closed: false
+    path:
+      - node: {angle_deg: 180, xyz_in: [0, 0, 0]}
+      - edge: {type: hallway, metric_in: 94}
+      - node: {angle_deg: 90, xyz_in: [94, 0, 0]}
+      - edge: {type: hallway, metric_in: 48}
+      - node: {angle_deg: 270, xyz_in: [94, 48, 0]}
+      - edge: {type: hallway, metric_in: 6}
+      - node: {angle_deg: 180, xyz_in: [100, 48, 0]}
+      - edge: {type: doorway, class: "36"}
+      - node: {angle_deg: 180, xyz_in: [136, 48, 0]}
+      - edge: {type: hallway, metric_in: 12}
+      - node: {angle_deg: 180, xyz_in: [148, 48, 0]}
+      - edge: {type: doorway, class: "36"}
+      - node: {angle_deg: 180, xyz_in: [184, 48, 0]}
+      - edge: {type: hallway, metric_in: 6}
+      - node: {angle_deg: 270, xyz_in: [190, 48, 0]}
+      - edge: {type: hallway, metric_in: 48}
+      - node: {angle_deg: 90, xyz_in: [190, 0, 0]}
+      - edge: {type: hallway, metric_in: 84}
+      - node: {angle_deg: 180, xyz_in: [274, 0, 0]}
+  - id: blocks
+    closed: false
+    path:
+      - node: {angle_deg: 180, xyz_in: [0, 500, 0]}
+      - edge: {type: hallway, metric_in: 20}
+      - node: {angle_deg: 270, xyz_in: [20, 500, 0]}
+      - edge: {type: hallway, metric_in: 48}
+      - node: {angle_deg: 90, xyz_in: [20, 452, 0]}
+      - edge: {type: hallway, metric_in: 18}
+      - node: {angle_deg: 90, xyz_in: [38, 452, 0]}
+      - edge: {type: hallway, metric_in: 48}
+      - node: {angle_deg: 270, xyz_in: [38, 500, 0]}
+      - edge: {type: hallway, metric_in: 80}
+      - node: {angle_deg: 270, xyz_in: [118, 500, 0]}
+      - edge: {type: hallway, metric_in: 48}
+      - node: {angle_deg: 90, xyz_in: [118, 452, 0]}
+      - edge: {type: hallway, metric_in: 18}
+      - node: {angle_deg: 90, xyz_in: [136, 452, 0]}
+      - edge: {type: hallway, metric_in: 48}
+      - node: {angle_deg: 270, xyz_in: [136, 500, 0]}
+      - edge: {type: hallway, metric_in: 20}
+      - node: {angle_deg: 180, xyz_in: [156, 500, 0]}
+)";
+
+TEST(HallwayViewTest, AnAlcoveIsPassedStraightAndBlocksAreTurnedAt) {
+  const Map map = ParseMap(kAlcoveAndBlocks, "alcove.yaml");
+  const HallwayView view(map);
+  // The alcove's sides go: one wall with two doors at its back (94 + 6, 12, 6 + 84).
+  EXPECT_EQ(view.steps_removed(), 2);
+  const Ring& alcove = view.view().ring(0);
+  EXPECT_EQ(Metrics(alcove), (std::vector<double>{100, -36, 12, -36, 90}));
+  for (const Node& node : alcove.nodes) EXPECT_DOUBLE_EQ(node.angle_deg, 180.0);
+  EXPECT_EQ(view.OriginalEdges(0, 0), (std::vector<int>{0, 1, 2}));
+  // The wall between the blocks is not an alcove: the faces either side of it (18 + 18 in)
+  // are shorter than it, the follower tracks it and turns at each block.
+  EXPECT_EQ(view.view().ring(1).EdgeCount(), 9);
+  // A back longer than the follower holds its track across: the alcove is turned into.
+  HallwayViewConfig short_recess;
+  short_recess.max_recess_in = 90.0;
+  EXPECT_EQ(HallwayView(map, short_recess).view().ring(0).EdgeCount(), 9);
 }
 
 }  // namespace

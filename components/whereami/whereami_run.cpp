@@ -85,6 +85,7 @@ RunSetup LoadRunSetup(const std::string& config_dir, const std::string& map_file
       "virtual_robot"));
   s.landmark = landmark::LoadLandmarkConfig(Section(dir + "/landmark.yaml", "landmark"));
   s.localizer = localizer::LoadLocalizerSettings(Section(dir + "/localizer.yaml", "localizer"));
+  s.localizer.view.camera_fov_deg = s.robot.camera.fov_deg;  // doors too wide to see whole
   s.locomotion =
       locomotion::LoadLocomotionConfig(Section(dir + "/locomotion.yaml", "locomotion"), s.robot);
   s.executive = executive::LoadExecutiveConfig(Section(dir + "/executive.yaml", "executive"));
