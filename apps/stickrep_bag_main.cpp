@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
@@ -21,11 +22,7 @@ int main(int argc, char** argv) {
   exporter->add_option("--topic", topic, "the topic to export")->required();
   CLI::App* check = app.add_subcommand("check", "every payload deserializes to its type");
   check->add_option("file", file, "the recording")->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   return stickrep::RunTool("stickrep-bag", [&] {
     using namespace stickrep::recording;
     if (*info) {

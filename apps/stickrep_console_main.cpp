@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
@@ -107,11 +108,7 @@ int main(int argc, char** argv) {
                  "one JSON object per refresh (status, confidence, best, hypotheses) instead of "
                  "the map");
   pose->add_option("--png", o.png, "write the map to scale with the pose to this PNG and exit");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   stickrep::runtime::InstallSignalHandlers();
   return stickrep::RunTool("stickrep-console", [&] {
     if (*list) return stickrep::console::ListTopics(o, std::cout);

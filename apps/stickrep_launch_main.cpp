@@ -5,8 +5,10 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "launch/launcher.h"
 
 int main(int argc, char** argv) {
@@ -23,11 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--config-dir", options.config_dir, "directory substituted for {config_dir}");
   app.add_option("--set", options.overrides,
                  "NAME=VALUE: a parameter of the graph, e.g. discovery_server=10.0.0.1:11811");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   try {
     const auto graph = stickrep::launch::LaunchGraph::LoadFile(graph_file);
     if (domain >= 0) options.extra_args = {"--domain", std::to_string(domain)};

@@ -2,8 +2,10 @@
 // build them from floor plan sources.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "stickrep/map_tool.h"
 
 int main(int argc, char** argv) {
@@ -65,12 +67,7 @@ int main(int argc, char** argv) {
   floor->add_option("SOURCE", floor_source, "Floor plan source (.floor.yaml)")->required();
   floor->add_option("--out", out_path, "Output map file")->required();
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
 
   if (*validate) return tool::Validate(paths, std::cout, std::cerr);
   if (*census) {

@@ -4,10 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "measure/error_measurement.h"
 #include "sensing/robot_config.h"
 #include "stickrep/map_io.h"
@@ -60,14 +62,7 @@ int main(int argc, char** argv) {
                "Short Side sides along the FOV edges instead of the printed 30 deg rays");
   app.add_flag("--no-casing-rule", no_casing_rule,
                "classify the detector's pairs as they come (shows the casing problem)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "stickrep-measure: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (const std::optional<int> rc = ParseCommandLine(app, argc, argv)) return *rc;
 
   try {
     if (fov_edges) config.estimator.short_side_edges = sensing::ShortSideEdges::kFieldOfViewEdges;

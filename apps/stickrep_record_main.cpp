@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
@@ -27,11 +28,7 @@ int main(int argc, char** argv) {
                  "cap the file's size (a full disk); what was committed before stays")
       ->check(CLI::NonNegativeNumber);
   stickrep::runtime::AddDeploymentOptions(app, o.deployment);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   stickrep::runtime::InstallSignalHandlers();
   return stickrep::RunTool("stickrep-record", [&] {
     const auto report = stickrep::recording::Record(o, std::cerr);

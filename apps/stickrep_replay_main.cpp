@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
@@ -33,11 +34,7 @@ int main(int argc, char** argv) {
   app.add_option("--domain", domain_id, "DDS domain id, overriding the system file")
       ->check(CLI::Range(0, 232));
   stickrep::runtime::AddDeploymentOptions(app, deployment);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   stickrep::runtime::InstallSignalHandlers();
   return stickrep::RunTool("stickrep-replay", [&] {
     o.remap = stickrep::recording::ParseRemaps(remaps);

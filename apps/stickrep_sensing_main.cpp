@@ -3,8 +3,10 @@
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "sensing/robot_config.h"
 #include "sensing/sensing_report.h"
 
@@ -40,7 +42,7 @@ int main(int argc, char** argv) {
   report->add_option("--json", json_path, "also write the report as JSON");
   report->add_option("--png", png_dir,
                      "write the histograms (Figures 5.4-5.9) into this directory");
-  CLI11_PARSE(app, argc, argv);
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
 
   try {
     const RobotConfig robot = LoadRobotConfigFile(robot_path);

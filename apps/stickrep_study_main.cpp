@@ -2,8 +2,10 @@
 // --suite paper.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "recovery/study_report.h"
 
 int main(int argc, char** argv) {
@@ -29,12 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--png-dir", o.png_dir, "Write histograms (Figures 6.3, 6.5) as PNG here");
   bool no_progress = false;
   app.add_flag("--no-progress", no_progress, "No progress bar");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   o.progress = !no_progress;
   return stickrep::recovery::report::RunTool(o, std::cout, std::cerr);
 }

@@ -2,8 +2,10 @@
 // each judged against the simulated truth, and their summary beside Table 6.22.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <optional>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "whereami/whereami_report.h"
 
 int main(int argc, char** argv) {
@@ -32,11 +34,6 @@ int main(int argc, char** argv) {
   app.add_flag("--trace", o.trace, "Print each run's sensed edges beside the map edges passed");
   app.add_option("--path-png", o.path_png,
                  "Draw each run's true path over the map into PREFIX_seed<N>.png");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : stickrep::kExitBadInput;
-  }
+  if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   return stickrep::whereami::RunTool(o, std::cout, std::cerr);
 }

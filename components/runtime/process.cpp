@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "runtime/deployment_options.h"
 #include "runtime/endpoint.h"
 #include "runtime/status_reporter.h"
@@ -110,13 +111,7 @@ std::optional<int> ParseProcessOptions(int argc, char** argv, const std::string&
   app.add_option("--set", o.sets,
                  "KEY=VALUE over this process's config section (dotted keys for nested ones; "
                  "repeatable)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
-  }
-  return std::nullopt;
+  return ParseCommandLine(app, argc, argv);
 }
 
 }  // namespace

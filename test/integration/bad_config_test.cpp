@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 #include "integration/process_fixture.h"
 
@@ -165,6 +167,44 @@ TEST(BadDeploymentTest, GraphWithABadProfileEndsTheRunWithCode2) {
   const auto p = RunToEnd({BinPath("stickrep-launch"), graph});
   EXPECT_EQ(p->exit_code(), 2) << p->output();
   EXPECT_THAT(p->output(), HasSubstr("refused its input (exit code 2)"));
+}
+
+// Every program, tool or process, refuses a bad command line with exit code 2 and CLI11's
+// message, and prints its help with exit code 0 (common/tool_main.h).
+const std::vector<std::string> kPrograms = {
+    "stickrep-bag",      "stickrep-camera",   "stickrep-console",   "stickrep-executive",
+    "stickrep-landmark", "stickrep-launch",   "stickrep-localizer", "stickrep-locomotion",
+    "stickrep-map",      "stickrep-measure",  "stickrep-record",    "stickrep-replay",
+    "stickrep-sensing",  "stickrep-sonar",    "stickrep-study",     "stickrep-transport-bench",
+    "stickrep-virtual-robot", "stickrep-whereami"};
+
+TEST(CommandLineTest, EveryProgramRefusesAnUnknownOptionWithCode2) {
+  for (const std::string& program : kPrograms) {
+    SCOPED_TRACE(program);
+    const auto p = RunToEnd({BinPath(program), "--no-such-option"});
+    EXPECT_EQ(p->exit_code(), 2) << p->output();
+    // The first thing wrong: the unknown option, or a required argument missing before it.
+    EXPECT_THAT(p->output(), HasSubstr("Run with --help for more information."));
+  }
+}
+
+TEST(CommandLineTest, EveryProgramPrintsItsHelpWithCode0) {
+  for (const std::string& program : kPrograms) {
+    SCOPED_TRACE(program);
+    const auto p = RunToEnd({BinPath(program), "--help"});
+    EXPECT_EQ(p->exit_code(), 0) << p->output();
+    EXPECT_THAT(p->output(), HasSubstr("Usage"));
+  }
+}
+
+TEST(CommandLineTest, AMissingValueOrSubcommandIsCode2) {
+  // CLI11's own codes for these were 114 (an option without its value) and 106 (extras).
+  const auto no_value = RunToEnd({BinPath("stickrep-sensing"), "report", "--json"});
+  EXPECT_EQ(no_value->exit_code(), 2) << no_value->output();
+  const auto extra = RunToEnd({BinPath("stickrep-launch"), "a.yaml", "b.yaml"});
+  EXPECT_EQ(extra->exit_code(), 2) << extra->output();
+  const auto bad_number = RunToEnd({BinPath("stickrep-whereami"), "--runs", "many"});
+  EXPECT_EQ(bad_number->exit_code(), 2) << bad_number->output();
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 
 #include "common/config_paths.h"
 #include "common/input_error.h"
+#include "common/tool_main.h"
 #include "runtime/bench/bench_link.h"
 #include "runtime/bench/bench_report.h"
 #include "runtime/bench/echo_process.h"
@@ -309,14 +310,10 @@ int Main(int argc, char** argv) {
   CLI::App app{"Latency and throughput of the runtime layer against raw Fast DDS"};
   Options o;
   AddOptions(app, o);
-  try {
-    app.parse(argc, argv);
-    if (o.role == "echo" && (o.impls.size() != 1 || o.profiles.size() != 1)) {
-      throw CLI::ValidationError("--role echo", "needs exactly one --impls and one --profiles");
-    }
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
+  if (const std::optional<int> rc = ParseCommandLine(app, argc, argv)) return *rc;
+  if (o.role == "echo" && (o.impls.size() != 1 || o.profiles.size() != 1)) {
+    std::fprintf(stderr, "--role echo: needs exactly one --impls and one --profiles\n");
+    return kExitBadInput;
   }
   // The echo may run in another directory context (ip netns exec): absolute paths.
   o.qos_file = std::filesystem::absolute(o.qos_file).string();
