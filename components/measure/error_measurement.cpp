@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/seeds.h"
 #include "common/units.h"
 #include "world/camera_renderer.h"
 #include "world/map_world.h"
@@ -126,11 +127,11 @@ Setup Prepare(const std::vector<map::Map>& maps, const sensing::RobotConfig& rob
       RingWorld rw;
       rw.map_index = static_cast<int>(m);
       // The worlds have seeds of their own, apart from the frames' (index >= 2^40).
-      std::mt19937_64 closed_rng(FrameSeed(config.seed, (1ull << 40) + m * 4096 + r));
+      std::mt19937_64 closed_rng(StreamSeed(config.seed, (1ull << 40) + m * 4096 + r));
       rw.geometry = world::BuildRingWorld(maps[m], r, options, closed_rng);
       rw.closed_scene = std::make_unique<world::Scene>(rw.geometry.world);
       options.open_door_fraction = config.open_door_fraction;
-      std::mt19937_64 open_rng(FrameSeed(config.seed, (1ull << 41) + m * 4096 + r));
+      std::mt19937_64 open_rng(StreamSeed(config.seed, (1ull << 41) + m * 4096 + r));
       rw.open_scene = std::make_unique<world::Scene>(
           world::BuildRingWorld(maps[m], r, options, open_rng).world);
       double length = 0.0;
@@ -211,7 +212,7 @@ Placement Place(const Setup& s, const RingWorld& rw, const world::Scene& scene, 
 
 FrameResult RunFrame(const Setup& s, std::uint64_t index) {
   const MeasureConfig& c = *s.config;
-  std::mt19937_64 rng(FrameSeed(c.seed, index));
+  std::mt19937_64 rng(StreamSeed(c.seed, index));
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   FrameResult out;
   out.map_index = static_cast<int>(index % s.rings_of_map.size());
@@ -330,14 +331,6 @@ FrameResult RunFrame(const Setup& s, std::uint64_t index) {
 }
 
 }  // namespace
-
-std::uint64_t FrameSeed(std::uint64_t seed, std::uint64_t index) {
-  // SplitMix64 over a combination of both: neighbouring indices give unrelated streams.
-  std::uint64_t z = seed + 0x9e3779b97f4a7c15ull * (index + 1);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
 
 double Tally::correct_pct() const { return Pct(tp + tn, frames()); }
 double Tally::tp_pct() const { return Pct(tp, positives()); }

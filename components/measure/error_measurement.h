@@ -129,9 +129,6 @@ struct Measurement {
 Measurement MeasurePipeline(const std::vector<map::Map>& maps, const sensing::RobotConfig& robot,
                             const MeasureConfig& config);
 
-// The seed of frame `index`: a SplitMix64 mix of (seed, index).
-std::uint64_t FrameSeed(std::uint64_t seed, std::uint64_t index);
-
 // Table 6.10 of the paper, in %: correct, TP, TN, misclassified, FP, mis-sized TP, FN.
 struct PaperTable610 {
   static constexpr double kCorrect = 83.87;

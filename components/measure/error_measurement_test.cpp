@@ -31,12 +31,6 @@ FrameResult Result(FrameResult::Outcome outcome, int true_class = -1, int sensed
   return r;
 }
 
-TEST(FrameSeedTest, IsAFunctionOfSeedAndIndexOnly) {
-  EXPECT_EQ(FrameSeed(7, 3), FrameSeed(7, 3));
-  EXPECT_NE(FrameSeed(7, 3), FrameSeed(7, 4));
-  EXPECT_NE(FrameSeed(7, 3), FrameSeed(8, 3));
-}
-
 TEST(TallyTest, RatesFollowTable610) {
   // 8 positives: 5 right, 2 mis-sized, 1 missed; 4 negatives: 3 right, 1 false door.
   Tally t;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/seeds.h"
+
 namespace stickrep::recovery {
 
 namespace {
@@ -12,17 +14,10 @@ double U01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1
 
 bool Coplanar(double angle_deg) { return std::abs(angle_deg - 180.0) < 1.0; }
 
-std::uint64_t SplitMix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 }  // namespace
 
 std::uint64_t RunSeed(std::uint64_t seed, std::uint64_t trial, std::uint64_t run) {
-  return SplitMix(SplitMix(SplitMix(seed) ^ trial) ^ run);
+  return SplitMix64(SplitMix64(SplitMix64(seed) ^ trial) ^ run);
 }
 
 RunStart DrawStart(const map::MatchIndex& index, std::mt19937_64& rng) {
