@@ -227,7 +227,12 @@ HallwayView::Place HallwayView::ToOriginal(int ring, int edge, int dir, double o
     if (!step_[ring][e]) along.push_back(e);
   }
   if (dir < 0) std::reverse(along.begin(), along.end());
-  double left = std::max(0.0, offset_in);
+  // The view's length is what the odometer travels (bends add or take some): scale to the
+  // walls' own lengths.
+  double walls_in = 0.0;
+  for (int e : along) walls_in += original_.ring(ring).edges[e].metric_in;
+  const double travel_in = view_.ring(ring).edges[edge].metric_in;
+  double left = std::max(0.0, offset_in) * (travel_in > 0.0 ? walls_in / travel_in : 1.0);
   for (size_t i = 0; i < along.size(); ++i) {
     const double len = original_.ring(ring).edges[along[i]].metric_in;
     if (left <= len || i + 1 == along.size()) return {along[i], std::min(left, len)};

@@ -78,7 +78,8 @@ class HallwayView {
 
   // A place `offset_in` into view edge `edge` (measured from the node behind, travelling
   // `dir`: +1 ring order) as a place on the original map: the original edge and the
-  // offset into it from its node behind. Steps across the hallway take no length.
+  // offset into it from its node behind. Steps across the hallway take no length; the
+  // travel a bend adds (odometer length) is spread over the wall in proportion.
   struct Place {
     int edge = 0;
     double offset_in = 0.0;

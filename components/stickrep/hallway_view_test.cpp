@@ -178,10 +178,14 @@ TEST(HallwayViewTest, ShallowBendsAndOpeningsAreOneWallAndCornersAreTurns) {
   EXPECT_DOUBLE_EQ(r.nodes[2].angle_deg, 90.0);  // 120 deg: the follower turns toward the wall
   EXPECT_EQ(view.OriginalEdges(0, 0), (std::vector<int>{0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(view.OriginalEdges(0, 2), (std::vector<int>{7, 8}));
-  // Places map back through the merged chords and the opening.
-  const HallwayView::Place p = view.ToOriginal(0, 0, +1, 260.0);
+  // Places map back through the merged chords and the opening, the odometer's extra travel
+  // outside the bends spread along the wall: 260 in of wall is 260 x 401.50 / 370 travelled.
+  const HallwayView::Place p = view.ToOriginal(0, 0, +1, 260.0 * r.edges[0].metric_in / 370.0);
   EXPECT_EQ(p.edge, 4);
-  EXPECT_DOUBLE_EQ(p.offset_in, 10.0);
+  EXPECT_NEAR(p.offset_in, 10.0, 1e-9);
+  const HallwayView::Place end = view.ToOriginal(0, 0, +1, r.edges[0].metric_in);
+  EXPECT_EQ(end.edge, 5);
+  EXPECT_NEAR(end.offset_in, 40.0, 1e-9);
   // The wall bent the other way (toward the free space): the base passes inside the bends.
   std::string inside = kBends;
   for (std::size_t at; (at = inside.find("angle_deg: 170")) != std::string::npos;) {
