@@ -5,13 +5,12 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <exception>
 #include <memory>
 #include <random>
 #include <stdexcept>
-#include <thread>
 
 #include "common/seeds.h"
+#include "common/worker_pool.h"
 #include "common/units.h"
 #include "world/camera_renderer.h"
 #include "world/map_world.h"
@@ -373,24 +372,10 @@ Measurement MeasurePipeline(const std::vector<map::Map>& maps, const sensing::Ro
   const Setup setup = Prepare(maps, robot, config);
 
   m.frames.resize(static_cast<std::size_t>(config.frames));
-  const int threads = std::min(config.threads, config.frames);
-  std::vector<std::exception_ptr> errors(threads);
-  std::vector<std::thread> workers;
-  for (int t = 0; t < threads; ++t) {
-    workers.emplace_back([&, t] {
-      try {
-        for (std::size_t i = t; i < m.frames.size(); i += threads) {
-          m.frames[i] = RunFrame(setup, i);
-        }
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    });
-  }
-  for (std::thread& w : workers) w.join();
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+  // Each frame is drawn from its own seed (StreamSeed of its index): the same frames
+  // whatever the number of threads.
+  ParallelFor(m.frames.size(), config.threads,
+              [&]() -> IndexTask { return [&](std::size_t i) { m.frames[i] = RunFrame(setup, i); }; });
 
   m.per_map.resize(maps.size());
   for (const FrameResult& r : m.frames) {

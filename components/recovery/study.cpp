@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
+#include "common/worker_pool.h"
 #include "recovery/bayes_localizer.h"
 #include "recovery/sensed_stream.h"
 
@@ -171,10 +173,9 @@ DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
     out.experiments[m].runs.resize(total);
   }
 
-  std::atomic<std::uint64_t> next{0}, done{0};
-  constexpr std::uint64_t kChunk = 25;
-  auto worker = [&]() {
-    std::vector<MethodRunner> runners;
+  // One runner per method and worker thread; each run has its own seeded streams.
+  const auto make_worker = [&]() -> IndexTask {
+    auto runners = std::make_shared<std::vector<MethodRunner>>();
     for (const MethodSpec& spec : options.methods) {
       MethodRunner r;
       r.spec = spec;
@@ -187,39 +188,28 @@ DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
                       cfg.bayes};
         r.bayes = std::make_unique<BayesLocalizer>(index, bm);
       }
-      runners.push_back(std::move(r));
+      runners->push_back(std::move(r));
     }
-    while (true) {
-      const std::uint64_t begin = next.fetch_add(kChunk);
-      if (begin >= total) break;
-      const std::uint64_t end = std::min(total, begin + kChunk);
-      for (std::uint64_t idx = begin; idx < end; ++idx) {
-        const std::uint64_t trial = idx / options.runs, run = idx % options.runs;
-        const std::uint64_t seed = RunSeed(options.seed, trial, run);
-        std::optional<SensedStream> noisy, exact_stream;
-        if (need_modeled) noisy.emplace(index, modeled, cfg.noise, cfg.base_tolerance, seed);
-        if (need_clean) exact_stream.emplace(index, clean, quiet, exact, seed);
-        for (std::size_t m = 0; m < runners.size(); ++m) {
-          SensedStream& s = runners[m].spec.error_free ? *exact_stream : *noisy;
-          out.experiments[m].runs[idx] = RunOne(runners[m], s, cfg.max_edges, frame_in);
-        }
-        done.fetch_add(1, std::memory_order_relaxed);
+    return [&, runners](std::size_t idx) {
+      const std::uint64_t trial = idx / options.runs, run = idx % options.runs;
+      const std::uint64_t seed = RunSeed(options.seed, trial, run);
+      std::optional<SensedStream> noisy, exact_stream;
+      if (need_modeled) noisy.emplace(index, modeled, cfg.noise, cfg.base_tolerance, seed);
+      if (need_clean) exact_stream.emplace(index, clean, quiet, exact, seed);
+      for (std::size_t m = 0; m < runners->size(); ++m) {
+        MethodRunner& runner = (*runners)[m];
+        SensedStream& s = runner.spec.error_free ? *exact_stream : *noisy;
+        out.experiments[m].runs[idx] = RunOne(runner, s, cfg.max_edges, frame_in);
       }
-    }
+    };
   };
-
   const int threads =
       options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  std::function<void(std::size_t, std::size_t)> progress;
   if (options.progress) {
-    while (done.load() < total) {
-      options.progress(done.load(), total);
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    options.progress(total, total);
+    progress = [&](std::size_t done, std::size_t all) { options.progress(done, all); };
   }
-  for (auto& t : pool) t.join();
+  ParallelFor(total, threads, make_worker, progress);
 
   for (ExperimentResult& e : out.experiments) {
     for (int t = 0; t < options.trials; ++t) {

@@ -5,14 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <atomic>
 #include <exception>
 #include <fstream>
-#include <mutex>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "common/input_error.h"
+#include "common/worker_pool.h"
 #include "localizer/localizer_config.h"
 #include "recovery/study_report.h"
 #include "stickrep/hallway_view.h"
@@ -72,15 +70,14 @@ Summary Summarize(const std::vector<RunResult>& results) {
 
 std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& options) {
   std::vector<RunResult> results(static_cast<size_t>(options.runs));
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    for (int i = next++; i < options.runs; i = next++) {
+  ParallelFor(results.size(), options.threads, [&]() -> IndexTask {
+    return [&](std::size_t i) {
       // One run that cannot be run is recorded as failed; the batch goes on.
-      RunResult& result = results[static_cast<size_t>(i)];
+      RunResult& result = results[i];
       result.seed = options.first_seed + static_cast<std::uint64_t>(i);
       try {
         RunOptions run;
-        run.seed = options.first_seed + static_cast<std::uint64_t>(i);
+        run.seed = result.seed;
         run.max_sim_s = options.max_sim_s;
         run.kidnap_after_s = options.kidnap_after_s;
         run.kidnap_jump_in = options.kidnap_jump_in;
@@ -93,11 +90,8 @@ std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& option
         result.failed = true;
         result.ended = std::string("failed: ") + e.what();
       }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int k = 0; k < std::max(1, options.threads); ++k) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
+    };
+  });
   return results;
 }
 
