@@ -16,9 +16,13 @@ bool IsCorner(double angle_deg) { return std::abs(angle_deg - 180.0) > 1.0; }
 
 }  // namespace
 
+double HallwayView::HallwayWidthIn(int r) const {
+  return original_.ring(r).width_in.value_or(config_.hallway_width_in);
+}
+
 double HallwayView::WidestSeenDoorIn(int r) const {
   if (config_.camera_fov_deg <= 0.0) return std::numeric_limits<double>::infinity();
-  const double width = original_.ring(r).width_in.value_or(config_.hallway_width_in);
+  const double width = HallwayWidthIn(r);
   const double half_fov = DegToRad(0.5 * config_.camera_fov_deg);
   return width * std::tan(half_fov) - config_.door_view_margin_in;  // 2 (width / 2) tan
 }
@@ -43,7 +47,7 @@ double HallwayView::BendTravelIn(int r, const Node& bend) const {
   // out. At a bend that turns the wall toward the free space (angle over 180°: the base
   // turns left, inside the bend) that path is shorter than the wall by 2 d tan(turn / 2);
   // at one that turns away (under 180°, the base outside it) longer by as much.
-  const double d = 0.5 * original_.ring(r).width_in.value_or(config_.hallway_width_in);
+  const double d = 0.5 * HallwayWidthIn(r);
   return -2.0 * d * std::tan(DegToRad(0.5 * (bend.angle_deg - 180.0)));
 }
 
@@ -74,7 +78,7 @@ bool HallwayView::IsRecessSide(int r, int e) const {
   if (!IsCorner(a.angle_deg) || std::abs(a.angle_deg + b.angle_deg - 360.0) >= 1.0) return false;
   // Shallower steps are IsStep's, whichever way they turn.
   if (side.metric_in < config_.max_step_in) return false;
-  if (side.metric_in >= ring.width_in.value_or(config_.hallway_width_in)) return false;
+  if (side.metric_in >= HallwayWidthIn(r)) return false;
   // Entering (a convex corner, then a concave one: the wall turns away from the hallway) the
   // recess lies ahead in ring order; leaving it, behind.
   const int dir = a.angle_deg < 180.0 ? +1 : -1;

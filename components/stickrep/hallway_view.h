@@ -100,6 +100,8 @@ class HallwayView {
   // see it whole.
   Edge Sensed(int r, const Edge& e) const;
   bool WallLike(int r, const Edge& e) const;
+  // The hallway's width along ring r: the map's, else the settings'.
+  double HallwayWidthIn(int r) const;
   // The widest door opening (one leaf of a double door) the camera sees whole along ring r.
   double WidestSeenDoorIn(int r) const;
   // What the base's odometer travels beyond the wall's length at bend `bend` of ring r.
