@@ -63,7 +63,8 @@ bool HallwayTracker::UpdateOffset(double offset_in, bool recess) {
   if (initialised_ && !Consistent(offset_in)) {
     if (recess) {
       if (recess_travel_in_ < 0.0) recess_travel_in_ = 0.0;
-      if (recess_travel_in_ < noise_.reinit_recess_in) return false;
+      recess_run_.push_back({recess_travel_in_, offset_in});
+      if (recess_travel_in_ < noise_.reinit_recess_in && !RecessDrifts()) return false;
     } else if (++rejected_ < noise_.reinit_after) {
       return false;
     }
@@ -78,11 +79,11 @@ bool HallwayTracker::UpdateOffset(double offset_in, bool recess) {
     pyp_ = 0.0;
     ppp_ = p0 * p0;
     rejected_ = 0;
-    recess_travel_in_ = -1.0;
+    EndRecessRun();
     return true;
   }
   rejected_ = 0;
-  recess_travel_in_ = -1.0;
+  EndRecessRun();
   const double ky = pyy_ / s, kp = pyp_ / s;
   y_ += ky * v;
   psi_ = WrapPi(psi_ + kp * v);
@@ -115,7 +116,26 @@ void HallwayTracker::TurnedOnto(double rad) {
   pyy_ = 1e4;
   pyp_ = 0.0;
   rejected_ = 0;
-  recess_travel_in_ = -1.0;
+  EndRecessRun();
+}
+
+bool HallwayTracker::RecessDrifts() const {
+  const double window = noise_.recess_window_in;
+  if (window <= 0.0 || recess_travel_in_ < 2.0 * window) return false;
+  // Least-squares slope of offset over travel across the window.
+  double n = 0.0, st = 0.0, so = 0.0, stt = 0.0, sto = 0.0;
+  for (const RecessSample& s : recess_run_) {
+    if (s.travel_in < recess_travel_in_ - window) continue;
+    n += 1.0;
+    st += s.travel_in;
+    so += s.offset_in;
+    stt += s.travel_in * s.travel_in;
+    sto += s.travel_in * s.offset_in;
+  }
+  const double spread = n * stt - st * st;
+  if (n < 4.0 || spread <= 0.25 * window * window * n * n / 12.0) return false;  // too few
+  const double slope = (n * sto - st * so) / spread;
+  return std::abs(slope) > std::tan(DegToRad(noise_.recess_max_slope_deg));
 }
 
 bool HallwayTracker::offset_known() const {

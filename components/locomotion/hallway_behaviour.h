@@ -59,6 +59,13 @@ struct HallwayTrackerNoise {
   // long as a corridor is wide is passed on the track, and holding it never brings the base
   // nearer a wall. (Counted in scans, 0.8 s, a slow base took a long alcove for the wall.)
   double reinit_recess_in = 96.0;
+  // A recess has a back parallel to the wall: once a run of such outliers is twice this
+  // long, the outliers over its last `recess_window_in` of travel must lie on a line within
+  // `recess_max_slope_deg` of the track. Readings that keep drifting farther are not a
+  // recess but a track gone wrong, its heading off, steering the base away from the only
+  // wall it has (across an open hall): the track restarts then, not 96 in later.
+  double recess_window_in = 24.0;
+  double recess_max_slope_deg = 10.0;
   // Reported as known below these standard deviations.
   double known_offset_sigma_in = 3.0;
   double known_heading_sigma_deg = 4.0;
@@ -86,7 +93,11 @@ class HallwayTracker {
   // turned with the base, so the heading error drops by `rad`; the offset in the new
   // hallway is not known yet.
   void TurnedOnto(double rad);
-  void Reset() { initialised_ = false; rejected_ = 0; recess_travel_in_ = -1.0; }
+  void Reset() {
+    initialised_ = false;
+    rejected_ = 0;
+    EndRecessRun();
+  }
 
   bool offset_known() const;
   bool heading_known() const;
@@ -101,6 +112,18 @@ class HallwayTracker {
   int rejected_ = 0;
   // Travel since the first of a run of recess outliers; < 0 outside such a run.
   double recess_travel_in_ = -1.0;
+  // The run's outliers: travel since its first, and the offset each put the base at.
+  struct RecessSample {
+    double travel_in;
+    double offset_in;
+  };
+  std::vector<RecessSample> recess_run_;
+  void EndRecessRun() {
+    recess_travel_in_ = -1.0;
+    recess_run_.clear();
+  }
+  // Whether the run's latest outliers drift (see HallwayTrackerNoise::recess_window_in).
+  bool RecessDrifts() const;
 };
 
 enum class BehaviourState { kNoScan, kFollowing, kStopping, kTurning, kObstacle };

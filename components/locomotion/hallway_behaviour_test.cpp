@@ -164,6 +164,48 @@ TEST(HallwayBehaviourTest, PassesADeepAlcoveOnTheTrackAtASlowPace) {
   }
 }
 
+// A track at offset `y0`, heading 0, certain of both after a few plain scans.
+HallwayTracker SettledTrack(double y0) {
+  HallwayTracker t;
+  for (int i = 0; i < 40; ++i) {
+    t.Predict(1.0, 0.0);
+    t.UpdateOffset(y0);
+  }
+  return t;
+}
+
+TEST(HallwayTrackerTest, ARecessOfSteadyDepthIsHeldOffForItsLength) {
+  // The camera's wall steps 24 in back for 90 in: every reading puts the base 24 in
+  // farther from it than the track does, with noise. None moves the track.
+  HallwayTracker t = SettledTrack(0.0);
+  for (int i = 0; i < 90; ++i) {
+    t.Predict(1.0, 0.0);
+    const double noise = (i % 3 - 1) * 0.8;
+    EXPECT_FALSE(t.UpdateOffset(-24.0 + noise, /*recess=*/true)) << "at " << i << " in";
+  }
+  EXPECT_NEAR(t.offset_in(), 0.0, 0.5);
+  // Back on the wall the track carries on.
+  t.Predict(1.0, 0.0);
+  EXPECT_TRUE(t.UpdateOffset(0.2));
+}
+
+TEST(HallwayTrackerTest, ReadingsThatKeepDriftingFartherRestartTheTrackEarly) {
+  // The track believes the base parallel to the wall, 20 in nearer it than the axis; the
+  // base really is on the axis and turned 20 degrees away from the wall, so each reading
+  // puts it farther out than the last: no recess has such a back. The track restarts at
+  // twice the drift window, not after the 96 in a recess is held.
+  HallwayTracker t = SettledTrack(20.0);
+  const double slope = std::tan(DegToRad(20.0));
+  double restarted_at = -1.0;
+  for (int i = 1; i <= 96 && restarted_at < 0.0; ++i) {
+    t.Predict(1.0, 0.0);
+    if (t.UpdateOffset(-slope * i, /*recess=*/true)) restarted_at = i;
+  }
+  EXPECT_GE(restarted_at, 2.0 * HallwayTrackerNoise{}.recess_window_in);
+  EXPECT_LE(restarted_at, 2.0 * HallwayTrackerNoise{}.recess_window_in + 2.0);
+  EXPECT_NEAR(t.offset_in(), -slope * restarted_at, 1e-9);
+}
+
 TEST(HallwayBehaviourTest, TurnsLeftAtAConvexCornerOntoTheNewAxis) {
   Drive r(LeftCorner());
   // Done once it has gone 10 ft up the new hallway.
