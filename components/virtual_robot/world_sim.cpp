@@ -119,7 +119,8 @@ void WorldSim::BuildAxis(const map::Ring& ring) {
   // straight, and the opposite wall (built from the same runs, world::BuildRingWorld).
   const std::vector<world::WallRun> runs =
       world::WithoutSteps(world::SplitIntoWallRuns(ring), closed_, kMaxStepIn);
-  axis_ = world::OffsetRuns(runs, closed_, 0.5 * ring.width_in.value_or(config_.hallway_width_in));
+  hallway_width_in_ = ring.width_in.value_or(config_.hallway_width_in);
+  axis_ = world::OffsetRuns(runs, closed_, 0.5 * hallway_width_in_);
   if (axis_.empty()) throw std::invalid_argument("ring '" + ring.id + "' has no hallway axis");
   axis_of_edge_.assign(edge_count(), -1);
   for (int j = 0; j < static_cast<int>(axis_.size()); ++j) {
@@ -146,15 +147,25 @@ world::Pose2d WorldSim::AxisPoseAbreast(double s) const {
   const double metric = edge_start_in_[e + 1] - edge_start_in_[e];
   const double f = metric > 0.0 ? (s - edge_start_in_[e]) / metric : 0.0;
   const Eigen::Vector2d on_wall = node_in_[e] + f * (node_in_[e + 1] - node_in_[e]);
-  // The axis segment of the edge's run; an edge whose run collapsed (a jog narrower than
-  // the hallway) takes the nearest segment.
+  // The axis segment of the edge's run. An edge whose run collapsed (a jog narrower than
+  // the hallway) or left only a stub of axis shorter than the hallway is wide (the back or
+  // a side of an alcove, which the follower passes straight) takes the nearest segment at
+  // least that long: a start there faces along the hallway, not across it.
+  const auto long_enough = [&](int k) {
+    return (axis_[k].b_in - axis_[k].a_in).norm() >= hallway_width_in_;
+  };
   int j = axis_of_edge_[e];
-  if (j < 0) {
-    double nearest = std::numeric_limits<double>::infinity();
+  if (j < 0 || !long_enough(j)) {
+    // The nearest long segment; with none, the nearest of any.
+    double nearest_long = std::numeric_limits<double>::infinity();
+    double nearest_any = nearest_long;
+    int long_j = -1, any_j = 0;
     for (int k = 0; k < static_cast<int>(axis_.size()); ++k) {
       const double d = SegmentDistance(on_wall, axis_[k].a_in, axis_[k].b_in);
-      if (d < nearest) nearest = d, j = k;
+      if (d < nearest_any) nearest_any = d, any_j = k;
+      if (d < nearest_long && long_enough(k)) nearest_long = d, long_j = k;
     }
+    j = long_j >= 0 ? long_j : (j >= 0 ? j : any_j);
   }
   const Eigen::Vector2d a = axis_[j].a_in, b = axis_[j].b_in;
   double t = 0.0;
@@ -251,10 +262,10 @@ SimTruth WorldSim::Truth() const {
   const int n = edge_count();
 
   // The edge the camera looks at: the first crossing of the optical axis with the mapped
-  // wall polyline.
+  // wall polyline, within twice the hallway's width (see SimTruth::edge_index).
   const double yaw = X_WR_.theta_rad + DegToRad(models_.camera.mount_yaw_deg);
   const Eigen::Vector2d ray{std::cos(yaw), std::sin(yaw)};
-  double best_t = std::numeric_limits<double>::infinity();
+  double best_t = 2.0 * hallway_width_in_;
   int edge = -1;
   for (int e = 0; e < n; ++e) {
     const double hit = RaySegment(p, ray, node_in_[e], node_in_[e + 1]);

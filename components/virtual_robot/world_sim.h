@@ -40,7 +40,9 @@ struct SimTruth {
   int ring = 0;
   // The edge the camera's optical axis meets first on the ring's mapped wall polyline and
   // how far along it (ring order, scaled to the edge's metric). When the axis meets no
-  // mapped wall (looking into a crossing), the edge nearest the robot instead.
+  // mapped wall (looking into a crossing), or meets one only across an open hall (farther
+  // than twice the hallway's width: the base has turned at the hall's corner and the wall
+  // it follows next begins ahead), the edge nearest the robot instead.
   int edge_index = 0;
   double offset_in = 0.0;
   bool optical_axis_on_wall = false;
@@ -131,6 +133,7 @@ class WorldSim {
   std::string ring_id_;
   int ring_ = 0;
   bool closed_ = true;
+  double hallway_width_in_ = 0.0;  // the ring's, or the settings' when it gives none
   std::vector<Eigen::Vector2d> node_in_;   // node i starts edge i
   // The hallway axis: midway between the mapped wall (shallow steps passed straight) and
   // the opposite wall, in ring order; the axis segment of each edge (-1: its run collapsed);

@@ -3,8 +3,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include "common/units.h"
 #include "stickrep/floor_plan.h"
 
 namespace stickrep::virtual_robot {
@@ -129,6 +132,100 @@ corridors:
       const bool up_the_ring = after.offset_in > before.offset_in;
       EXPECT_EQ(after.forward_in_ring, up_the_ring) << "start " << start_in << ", speed " << speed;
     }
+  }
+}
+
+// An 88 in corridor, 1200 in long, with an alcove 96 in wide and 48 in deep on its right
+// side at 300 in and a hall 480 in wide and 360 in deep on its left at 600 in.
+map::Map AlcoveAndHallCorridor() {
+  return map::ParseFloorPlan(R"(stickrep_floor: 1
+name: alcove_and_hall
+corridors:
+  - id: c
+    width_in: 88
+    start: {xy_in: [0, 0], heading_deg: 0}
+    path:
+      - straight_in: 1200
+    ends: {start: wall, end: wall}
+    right:
+      - {at_in: 300, alcove: {width_in: 96, depth_in: 48}}
+    left:
+      - {at_in: 600, alcove: {width_in: 480, depth_in: 360}}
+)", "alcove_and_hall.floor.yaml");
+}
+
+// Ring positions whose edge is the back of the alcove (a wall 96 in long whose two
+// neighbours are 48 in walls at right angles).
+std::vector<double> AlcoveBackPositions(const map::Ring& ring) {
+  std::vector<double> out;
+  double s = 0.0;
+  const int n = ring.EdgeCount();
+  for (int e = 0; e < n; ++e) {
+    const double len = ring.edges[e].metric_in;
+    if (std::abs(len - 96.0) < 1e-6 && std::abs(ring.edges[(e + n - 1) % n].metric_in - 48.0) < 1e-6 &&
+        std::abs(ring.edges[(e + 1) % n].metric_in - 48.0) < 1e-6) {
+      for (const double f : {0.1, 0.5, 0.9}) out.push_back(s + f * len);
+    }
+    s += len;
+  }
+  return out;
+}
+
+TEST(WorldSimTest, AStartAbreastOfAnAlcoveFacesAlongTheCorridor) {
+  // The axis offset from the alcove's back is a stub a few inches long between the offsets
+  // of its sides: a start placed on it would face across the corridor.
+  const map::Map corridor = AlcoveAndHallCorridor();
+  WorldSimConfig c = Exact();
+  c.ring_id = "c";
+  const std::vector<double> starts = AlcoveBackPositions(corridor.ring(0));
+  ASSERT_EQ(starts.size(), 3u);
+  for (const double start_in : starts) {
+    WorldSim sim(corridor, sensing::RobotConfig{}, c, start_in, 1);
+    const double heading = sim.Truth().X_WR.theta_rad;
+    EXPECT_LT(std::abs(std::sin(heading)), 1e-6) << "start " << start_in << ": heading " << heading;
+    EXPECT_LE(std::abs(sim.Truth().X_WR.y_in), 44.0 + 1e-6) << "start " << start_in;
+  }
+}
+
+TEST(WorldSimTest, TheCameraLookingAcrossAHallIsNotOnTheHallsFarWall) {
+  // On the corridor's axis in front of the hall, the camera looks 404 in across it to the
+  // far wall: farther than twice the corridor's width, so the truth is the nearest wall.
+  const map::Map corridor = AlcoveAndHallCorridor();
+  WorldSimConfig c = Exact();
+  c.ring_id = "c";
+  // Starts abreast of the middle of the walls before the alcove and before the hall: one
+  // on each side.
+  std::vector<double> starts;
+  double s = 0.0;
+  for (const map::Edge& e : corridor.ring(0).edges) {
+    if (std::abs(e.metric_in - 300.0) < 1e-6 || std::abs(e.metric_in - 600.0) < 1e-6) {
+      starts.push_back(s + 0.5 * e.metric_in);
+    }
+    s += e.metric_in;
+  }
+  ASSERT_EQ(starts.size(), 2u);
+  for (const double start_in : starts) {
+    WorldSim sim(corridor, sensing::RobotConfig{}, c, start_in, 1);
+    // Along the axis to abreast of the hall's middle (x = 840) at 1 ft/s, forward or back.
+    const world::Pose2d p0 = sim.Truth().X_WR;
+    ASSERT_GT(std::abs(std::cos(p0.theta_rad)), 0.99);
+    const double travel = (840.0 - p0.x_in) / std::cos(p0.theta_rad);
+    const double ftps = std::copysign(1.0, travel);
+    const int steps = static_cast<int>(std::abs(travel) / 1.2);
+    for (int i = 0; i < steps; ++i) sim.Step(0.1, ftps, ftps);
+    sim.Step((std::abs(travel) - 1.2 * steps) / 12.0, ftps, ftps);
+    const SimTruth t = sim.Truth();
+    ASSERT_NEAR(t.X_WR.x_in, 840.0, 1e-6);
+    // Whichever side it watches, the edge it is judged on lies within 2 widths of the base.
+    const map::Ring& ring = corridor.ring(0);
+    const map::Node& a = ring.nodes[t.edge_index];
+    const map::Node& b = ring.nodes[(t.edge_index + 1) % ring.NodeCount()];
+    const double ax = a.x_in - t.X_WR.x_in, ay = a.y_in - t.X_WR.y_in;
+    const double bx = b.x_in - t.X_WR.x_in, by = b.y_in - t.X_WR.y_in;
+    const double len2 = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+    const double f = std::clamp(-(ax * (bx - ax) + ay * (by - ay)) / len2, 0.0, 1.0);
+    const double d = std::hypot(ax + f * (bx - ax), ay + f * (by - ay));
+    EXPECT_LE(d, 2.0 * 88.0) << "start " << start_in << ": edge " << t.edge_index;
   }
 }
 
