@@ -99,10 +99,9 @@ PlacedRobot PlaceRobot(const map::Map& map, const sensing::RobotConfig& robot,
   }
 }
 
-bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth,
-                      const std::string& truth_ring_id, int ring_edge_count) {
-  return PoseMatchesTruth(ring_id, edge, forward, truth_ring_id, truth.edge_index,
-                          truth.forward_in_ring, ring_edge_count);
+bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth) {
+  return PoseMatchesTruth(ring_id, edge, forward, truth.seen_ring_id, truth.seen_edge_index,
+                          truth.seen_forward_in_ring, truth.seen_ring_edge_count);
 }
 
 bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward,

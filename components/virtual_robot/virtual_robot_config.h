@@ -70,10 +70,10 @@ PlacedRobot PlaceRobot(const map::Map& map, const sensing::RobotConfig& robot,
                        const VirtualRobotConfig& config, int ring);
 
 // Whether a localized pose (ring id, edge, travel direction) names where the robot truly
-// is: the same ring and direction, and the true edge or a neighbour (the pose may be
-// published while a node is crossed).
-bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth,
-                      const std::string& truth_ring_id, int ring_edge_count);
+// is: the same ring and direction as where the camera looks over the whole floor
+// (SimTruth::seen_ring_id), and that edge or a neighbour (the pose may be published while
+// a node is crossed).
+bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward, const SimTruth& truth);
 // The same against a truth given as its ring, edge and direction (a recorded GroundTruth).
 bool PoseMatchesTruth(const std::string& ring_id, int edge, bool forward,
                       const std::string& truth_ring_id, int truth_edge, bool truth_forward,

@@ -161,10 +161,10 @@ class VirtualRobotNode : public runtime::ProcessNode {
     if (judged_) return;
     judged_ = true;
     const SimTruth t = sim_->Truth();
-    const bool forward = t.forward_in_ring;
+    const bool forward = t.seen_forward_in_ring;
     const bool correct =
         PoseMatchesTruth(p.best().ring_id(), static_cast<int>(p.best().edge_index()),
-                         p.best().forward(), t, sim_->ring_id(), sim_->edge_count());
+                         p.best().forward(), t);
     const double sim_s = (SimNowNs() - start_wall_ns_) * 1e-9;
     const double wall_s = (ctx_->now_ns() - start_wall_ns_) * 1e-9;
     const double travelled_in = t.distance_in - recovery_start_in_;
@@ -173,7 +173,7 @@ class VirtualRobotNode : public runtime::ProcessNode {
         "edge {} {}; truth ring '{}' edge {} {}: {}",
         p.edges_sensed(), InchesToFeet(travelled_in), sim_s - recovery_start_s_,
         wall_s - recovery_start_wall_s_, p.best().ring_id(), p.best().edge_index(),
-        p.best().forward() ? "forward" : "backward", sim_->ring_id(), t.edge_index,
+        p.best().forward() ? "forward" : "backward", t.seen_ring_id, t.seen_edge_index,
         forward ? "forward" : "backward", correct ? "CORRECT" : "INCORRECT");
     ctx_->log->info("{}", check);
     pose_checks_.push_back(check);

@@ -76,6 +76,19 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   edge_start_in_.push_back(s);
   length_in_ = s;
   BuildAxis(ring);
+  walls_.push_back({ring_id_, node_in_});
+  if (ring.outline == map::Outline::kCorridor) {
+    for (int r = 0; r < map.RingCount(); ++r) {
+      if (r == ring_) continue;
+      const map::Ring& other = map.ring(r);
+      RingWalls w{other.id, {}};
+      for (int i = 0; i <= other.EdgeCount(); ++i) {
+        const map::Node& n = other.nodes[i == other.EdgeCount() && other.closed ? 0 : i];
+        w.node_in.emplace_back(n.x_in, n.y_in);
+      }
+      walls_.push_back(std::move(w));
+    }
+  }
 
   world::MapWorldOptions options;
   options.hallway_width_in = config.hallway_width_in;
@@ -176,6 +189,39 @@ world::Pose2d WorldSim::AxisPoseAbreast(double s) const {
   return world::Pose2d{p.x(), p.y(), std::atan2(-u.y(), -u.x())};
 }
 
+WorldSim::WallSeen WorldSim::Look(const Eigen::Vector2d& p, const Eigen::Vector2d& ray,
+                                  int only) const {
+  WallSeen seen;
+  double best_t = 2.0 * hallway_width_in_;
+  const int first = only < 0 ? 0 : only;
+  const int last = only < 0 ? static_cast<int>(walls_.size()) - 1 : only;
+  // The start ring first: where two rings share a line (a corridor's mouth), it is its.
+  for (int r = first; r <= last; ++r) {
+    const std::vector<Eigen::Vector2d>& n = walls_[r].node_in;
+    for (int e = 0; e + 1 < static_cast<int>(n.size()); ++e) {
+      const double hit = RaySegment(p, ray, n[e], n[e + 1]);
+      if (hit > 0.0 && hit < best_t) {
+        best_t = hit;
+        seen = {r, e, p + ray * hit, true};
+      }
+    }
+  }
+  if (seen.edge >= 0) return seen;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int r = first; r <= last; ++r) {
+    const std::vector<Eigen::Vector2d>& n = walls_[r].node_in;
+    for (int e = 0; e + 1 < static_cast<int>(n.size()); ++e) {
+      double f = 0.0;
+      const double d = SegmentDistance(p, n[e], n[e + 1], &f);
+      if (d < nearest) {
+        nearest = d;
+        seen = {r, e, n[e] + f * (n[e + 1] - n[e]), false};
+      }
+    }
+  }
+  return seen;
+}
+
 double WorldSim::Clearance(const Eigen::Vector2d& p) const {
   double best = std::numeric_limits<double>::infinity();
   for (int i : obstacle_panels_) {
@@ -259,37 +305,15 @@ SimTruth WorldSim::Truth() const {
   t.collisions = collisions_;
   t.in_contact = in_contact_;
   const Eigen::Vector2d p = X_WR_.position();
-  const int n = edge_count();
 
   // The edge the camera looks at: the first crossing of the optical axis with the mapped
   // wall polyline, within twice the hallway's width (see SimTruth::edge_index).
   const double yaw = X_WR_.theta_rad + DegToRad(models_.camera.mount_yaw_deg);
   const Eigen::Vector2d ray{std::cos(yaw), std::sin(yaw)};
-  double best_t = 2.0 * hallway_width_in_;
-  int edge = -1;
-  for (int e = 0; e < n; ++e) {
-    const double hit = RaySegment(p, ray, node_in_[e], node_in_[e + 1]);
-    if (hit > 0.0 && hit < best_t) {
-      best_t = hit;
-      edge = e;
-    }
-  }
-  Eigen::Vector2d foot = p;
-  if (edge >= 0) {
-    t.optical_axis_on_wall = true;
-    foot = p + ray * best_t;
-  } else {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (int e = 0; e < n; ++e) {
-      double f = 0.0;
-      const double d = SegmentDistance(p, node_in_[e], node_in_[e + 1], &f);
-      if (d < nearest) {
-        nearest = d;
-        edge = e;
-        foot = node_in_[e] + f * (node_in_[e + 1] - node_in_[e]);
-      }
-    }
-  }
+  const WallSeen own = Look(p, ray, 0);
+  const int edge = own.edge;
+  const Eigen::Vector2d foot = own.foot;
+  t.optical_axis_on_wall = own.on_axis;
   t.edge_index = edge;
   const double metric = edge_start_in_[edge + 1] - edge_start_in_[edge];
   const double length = (node_in_[edge + 1] - node_in_[edge]).norm();
@@ -326,6 +350,17 @@ SimTruth WorldSim::Truth() const {
       t.forward_in_ring = along > 0.0;
     }
   }
+  // The floor-wide look the pose is judged on. On another corridor's wall the direction is
+  // that wall's ring order against the last translation.
+  const WallSeen seen = walls_.size() > 1 ? Look(p, ray, -1) : own;
+  const RingWalls& seen_walls = walls_[seen.ring];
+  t.seen_ring_id = seen_walls.id;
+  t.seen_edge_index = seen.edge;
+  t.seen_ring_edge_count = static_cast<int>(seen_walls.node_in.size()) - 1;
+  t.seen_forward_in_ring =
+      seen.ring == 0 ? t.forward_in_ring
+                     : last_motion_.dot(Unit(seen_walls.node_in[seen.edge],
+                                             seen_walls.node_in[seen.edge + 1])) > 0.0;
   const Eigen::Vector2d a = axis_[nearest].a_in, b = axis_[nearest].b_in;
   const Eigen::Vector2d u = Unit(a, b);
   t.lateral_offset_in = (p - a).dot(-Left(u));

@@ -46,6 +46,14 @@ struct SimTruth {
   int edge_index = 0;
   double offset_in = 0.0;
   bool optical_axis_on_wall = false;
+  // The same look taken over every corridor of the floor (a corridor outline's world is
+  // the whole building, and the base may go on from its ring into another corridor): the
+  // ring, edge and travel direction a localized pose is judged against. They are the start
+  // ring's edge_index and forward_in_ring while the camera looks at the start ring.
+  std::string seen_ring_id;
+  int seen_edge_index = 0;
+  int seen_ring_edge_count = 0;
+  bool seen_forward_in_ring = false;
   double distance_in = 0.0;       // true path length travelled (both directions count)
   // The base last travelled in ring order (judged on the edge above; turning in place
   // keeps the direction the base travelled before the turn).
@@ -120,6 +128,20 @@ class WorldSim {
 
  private:
   world::Pose2d AxisPoseAbreast(double ring_position_in) const;
+  // The mapped walls of one ring, as the truth looks at them.
+  struct RingWalls {
+    std::string id;
+    std::vector<Eigen::Vector2d> node_in;  // node i starts edge i; the last closes the ring
+  };
+  struct WallSeen {
+    int ring = -1;  // index into walls_
+    int edge = -1;
+    Eigen::Vector2d foot{0.0, 0.0};
+    bool on_axis = false;  // met by the optical axis (else the nearest wall)
+  };
+  // The first wall of `walls_[only]` (or of every ring when only < 0) the ray from p meets
+  // within twice the hallway's width; else the nearest.
+  WallSeen Look(const Eigen::Vector2d& p, const Eigen::Vector2d& ray, int only) const;
   void BuildAxis(const map::Ring& ring);
   // Distance from p to the nearest wall, frame or leaf of the scene at the base's height.
   double Clearance(const Eigen::Vector2d& p) const;
@@ -134,6 +156,8 @@ class WorldSim {
   int ring_ = 0;
   bool closed_ = true;
   double hallway_width_in_ = 0.0;  // the ring's, or the settings' when it gives none
+  // walls_[0] is the start ring; with a corridor outline the floor's other rings follow.
+  std::vector<RingWalls> walls_;
   std::vector<Eigen::Vector2d> node_in_;   // node i starts edge i
   // The hallway axis: midway between the mapped wall (shallow steps passed straight) and
   // the opposite wall, in ring order; the axis segment of each edge (-1: its run collapsed);

@@ -1,5 +1,7 @@
 #include "virtual_robot/world_sim.h"
 
+#include "virtual_robot/virtual_robot_config.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -227,6 +229,75 @@ TEST(WorldSimTest, TheCameraLookingAcrossAHallIsNotOnTheHallsFarWall) {
     const double d = std::hypot(ax + f * (bx - ax), ay + f * (by - ay));
     EXPECT_LE(d, 2.0 * 88.0) << "start " << start_in << ": edge " << t.edge_index;
   }
+}
+
+TEST(WorldSimTest, APoseIsJudgedOnTheCorridorTheBaseHasGoneOnInto) {
+  // A 96 in main corridor with a wing leaving its right side through an 88 in mouth at
+  // x = 700..788. A robot started on the main corridor that drives into the wing is judged
+  // on the wing's wall it looks at; its start-ring edge stays the main corridor's.
+  const map::Map floor = map::ParseFloorPlan(R"(stickrep_floor: 1
+name: wing_off_main
+corridors:
+  - id: main
+    width_in: 96
+    start: {xy_in: [0, 0], heading_deg: 0}
+    path:
+      - straight_in: 1200
+    ends: {start: wall, end: wall}
+    right:
+      - {at_in: 700, opening_in: 88}
+  - id: wing
+    width_in: 88
+    start: {xy_in: [744, -48], heading_deg: -90}
+    path:
+      - straight_in: 500
+    ends: {start: opening, end: wall}
+)", "wing_off_main.floor.yaml");
+  WorldSimConfig c = Exact();
+  c.ring_id = "main";
+  // A start abreast of the mouth, across from it: the place at x = 744 on the wall at
+  // y = 48 (the main corridor's axis is y = 0).
+  const map::Ring& main = floor.ring(floor.FindRing("main"));
+  double start_in = -1.0, s = 0.0;
+  for (int e = 0; e < main.EdgeCount(); ++e) {
+    const map::Node& a = main.nodes[e];
+    const map::Node& b = main.nodes[(e + 1) % main.NodeCount()];
+    if (std::abs(a.y_in - 48.0) < 1e-6 && std::abs(b.y_in - 48.0) < 1e-6 &&
+        std::min(a.x_in, b.x_in) < 744.0 && std::max(a.x_in, b.x_in) > 744.0) {
+      start_in = s + std::abs(744.0 - a.x_in);
+    }
+    s += main.edges[e].metric_in;
+  }
+  ASSERT_GE(start_in, 0.0);
+  WorldSim sim(floor, sensing::RobotConfig{}, c, start_in, 1);
+  EXPECT_EQ(sim.Truth().seen_ring_id, "main");
+  EXPECT_EQ(sim.Truth().seen_edge_index, sim.Truth().edge_index);
+  // Turn in place to face -y (down the wing), then drive 200 in.
+  for (int i = 0; i < 2000; ++i) {
+    const double error = std::remainder(-M_PI / 2.0 - sim.pose().theta_rad, 2.0 * M_PI);
+    if (std::abs(error) < DegToRad(0.5)) break;
+    const double v = std::copysign(0.2, error);
+    sim.Step(0.02, -v, v);
+  }
+  ASSERT_NEAR(sim.pose().theta_rad, -M_PI / 2.0, DegToRad(0.5));
+  for (int i = 0; i < 170; ++i) sim.Step(0.1, 1.0, 1.0);
+  const SimTruth t = sim.Truth();
+  ASSERT_LT(t.X_WR.y_in, -150.0);
+  EXPECT_EQ(t.seen_ring_id, "wing");
+  ASSERT_GE(t.seen_edge_index, 0);
+  ASSERT_LT(t.seen_edge_index, t.seen_ring_edge_count);
+  const map::Ring& wing = floor.ring(floor.FindRing("wing"));
+  EXPECT_EQ(t.seen_ring_edge_count, wing.EdgeCount());
+  // The camera looks left of travel, at the wing's wall at x = 788.
+  const map::Node& a = wing.nodes[t.seen_edge_index];
+  const map::Node& b = wing.nodes[(t.seen_edge_index + 1) % wing.NodeCount()];
+  EXPECT_NEAR(a.x_in, 788.0, 1e-6);
+  EXPECT_NEAR(b.x_in, 788.0, 1e-6);
+  // Travelling -y along that wall: forward in the wing's ring order when its edge runs -y.
+  EXPECT_EQ(t.seen_forward_in_ring, b.y_in < a.y_in);
+  // Judged there, a pose on the main corridor is wrong and one on the wing right.
+  EXPECT_FALSE(PoseMatchesTruth("main", t.edge_index, t.forward_in_ring, t));
+  EXPECT_TRUE(PoseMatchesTruth("wing", t.seen_edge_index, t.seen_forward_in_ring, t));
 }
 
 TEST(WorldSimTest, UnknownRingIsRejected) {

@@ -22,10 +22,14 @@ namespace {
 
 std::string Describe(const std::optional<Recovery>& r) {
   if (!r) return "no pose";
-  return fmt::format("{} after {} edges, {:.1f} ft, {:.1f} s: {} edge {} {}, truth edge {} {}",
+  // The truth's ring is named where it is not the pose's (the base went on into another
+  // corridor of the floor).
+  const std::string truth_ring =
+      r->truth_ring_id == r->ring_id ? std::string() : r->truth_ring_id + " ";
+  return fmt::format("{} after {} edges, {:.1f} ft, {:.1f} s: {} edge {} {}, truth {}edge {} {}",
                      r->correct ? "CORRECT" : "INCORRECT", r->edges_sensed, r->distance_ft,
-                     r->time_s, r->ring_id, r->edge, r->forward ? "fwd" : "back", r->truth_edge,
-                     r->truth_forward ? "fwd" : "back");
+                     r->time_s, r->ring_id, r->edge, r->forward ? "fwd" : "back", truth_ring,
+                     r->truth_edge, r->truth_forward ? "fwd" : "back");
 }
 
 nlohmann::json ToJson(const std::optional<Recovery>& r) {

@@ -172,11 +172,10 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
     r.ring_id = map.ring(h.ring).id;
     r.edge = h.edge;
     r.forward = h.dir > 0;
-    r.truth_ring_id = sim.ring_id();
-    r.truth_edge = truth.edge_index;
-    r.truth_forward = truth.forward_in_ring;
-    r.correct = virtual_robot::PoseMatchesTruth(r.ring_id, r.edge, r.forward, truth,
-                                                sim.ring_id(), sim.edge_count());
+    r.truth_ring_id = truth.seen_ring_id;
+    r.truth_edge = truth.seen_edge_index;
+    r.truth_forward = truth.seen_forward_in_ring;
+    r.correct = virtual_robot::PoseMatchesTruth(r.ring_id, r.edge, r.forward, truth);
     r.edges_sensed = e.edges_sensed;
     r.distance_ft = InchesToFeet(truth.distance_in - epoch_in);
     r.time_s = t - epoch_s;
