@@ -317,8 +317,11 @@ std::optional<double> EmptySectorTurnRad(const std::vector<SonarRange>& scan, in
     }
     return -1;
   };
+  // No echo, or one from beyond the range that leaves a side open (a far wall down the
+  // next stretch, straight along one sensor's axis).
   const auto silent = [&](int k) {
-    return k >= 0 && !scan[k].valid && !scan[k].outside_footprint;
+    if (k < 0 || scan[k].outside_footprint) return false;
+    return !scan[k].valid || scan[k].range_in + c.head_radius_in > c.side_open_range_in;
   };
   for (const double side : {+1.0, -1.0}) {
     // The run of silent sensors from the first one off the axis outward.

@@ -220,7 +220,8 @@ double SensorBearingRad(int k, const HallwayFollowerConfig& config);
 
 // Where a hallway end was judged from the front sensors: a turn after all when, on one side,
 // every sensor from the first off the travel axis to at least min_free_sector_deg returns no
-// echo (the next stretch's walls meet them too steeply: a bend of 30-75 deg, whose side is
+// echo or one beyond side_open_range_in (the next stretch's walls meet them too steeply, or
+// one looks straight down it at a far wall: a bend of 30-75 deg, whose side is
 // not "open" abeam because the sensors behind abeam still read the wall passed) while the
 // other side answers. Returns the rotation onto the middle of that empty sector (CCW +),
 // or nullopt. An open door cannot empty a sector that wide at the stopping point.

@@ -135,6 +135,23 @@ TEST(HallwayFollowerTest, AnEmptySectorAheadOfAbeamIsABendNotAnEnd) {
   turn = EmptySectorTurnRad(SilentBetween(15, 90, -1), -1, c);
   ASSERT_TRUE(turn.has_value());
   EXPECT_NEAR(RadToDeg(*turn), 52.5, 1e-6);
+  // The teaching building's science wing, its 60 deg turn seen travelling backward from the
+  // far leg: silent from 15 to 60 deg toward the turn, the sensor at 75 deg looking straight
+  // up the next stretch at a wall 132 in off, 90 and 105 deg silent again. A far echo is no
+  // wall beside the base: the sector is empty to 105 deg.
+  std::vector<SonarRange> far = SilentBetween(15, 105, -1);
+  for (int k = 0; k < c.sensor_count; ++k) {
+    const double rel = RadToDeg(std::remainder(SensorBearingRad(k, c) - kPi, 2.0 * kPi));
+    if (std::abs(rel - 75.0) < 1e-6) far[k] = {132.0, true};
+  }
+  turn = EmptySectorTurnRad(far, -1, c);
+  ASSERT_TRUE(turn.has_value());
+  EXPECT_NEAR(RadToDeg(*turn), 60.0, 1e-6);
+  // Within the side range that echo is a wall beside the base: the empty run stops at 60.
+  for (SonarRange& r : far) {
+    if (r.valid && r.range_in > 100.0) r.range_in = 60.0;
+  }
+  EXPECT_FALSE(EmptySectorTurnRad(far, -1, c).has_value());
   // A real end answers ahead; an open door empties two or three sensors, not five; an
   // empty sector that does not start next to the axis is no bend ahead.
   EXPECT_FALSE(EmptySectorTurnRad(SilentBetween(200, 200, +1), +1, c).has_value());
