@@ -247,14 +247,16 @@ class VirtualRobotNode : public runtime::ProcessNode {
     g.pose().x_in(t.X_WR.x_in);
     g.pose().y_in(t.X_WR.y_in);
     g.pose().heading_rad(t.X_WR.theta_rad);
-    g.ring_id(sim_->ring_id());
-    g.edge_index(static_cast<uint32_t>(t.edge_index));
-    g.offset_in(t.offset_in);
+    // Where the camera looks over the whole floor: the place a pose is judged on, live and
+    // in a replay alike.
+    g.ring_id(t.seen_ring_id);
+    g.edge_index(static_cast<uint32_t>(t.seen_edge_index));
+    g.offset_in(t.seen_offset_in);
     g.distance_in(t.distance_in);
     g.lateral_offset_in(t.lateral_offset_in);
     g.heading_error_deg(RadToDeg(t.heading_error_rad));
     g.collisions(static_cast<uint32_t>(t.collisions));
-    g.forward_in_ring(t.forward_in_ring);
+    g.forward_in_ring(t.seen_forward_in_ring);
     if (std::hypot(t.X_WR.x_in - path_.back().first, t.X_WR.y_in - path_.back().second) > 6.0) {
       path_.push_back({t.X_WR.x_in, t.X_WR.y_in});
     }

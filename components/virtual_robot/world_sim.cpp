@@ -76,16 +76,18 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   edge_start_in_.push_back(s);
   length_in_ = s;
   BuildAxis(ring);
-  walls_.push_back({ring_id_, node_in_});
+  walls_.push_back({ring_id_, node_in_, {}});
+  for (const map::Edge& e : ring.edges) walls_.back().metric_in.push_back(e.metric_in);
   if (ring.outline == map::Outline::kCorridor) {
     for (int r = 0; r < map.RingCount(); ++r) {
       if (r == ring_) continue;
       const map::Ring& other = map.ring(r);
-      RingWalls w{other.id, {}};
+      RingWalls w{other.id, {}, {}};
       for (int i = 0; i <= other.EdgeCount(); ++i) {
         const map::Node& n = other.nodes[i == other.EdgeCount() && other.closed ? 0 : i];
         w.node_in.emplace_back(n.x_in, n.y_in);
       }
+      for (const map::Edge& e : other.edges) w.metric_in.push_back(e.metric_in);
       walls_.push_back(std::move(w));
     }
   }
@@ -356,6 +358,12 @@ SimTruth WorldSim::Truth() const {
   const RingWalls& seen_walls = walls_[seen.ring];
   t.seen_ring_id = seen_walls.id;
   t.seen_edge_index = seen.edge;
+  {
+    const Eigen::Vector2d a = seen_walls.node_in[seen.edge], b = seen_walls.node_in[seen.edge + 1];
+    const double metric = seen_walls.metric_in[seen.edge], length = (b - a).norm();
+    t.seen_offset_in =
+        length > 0.0 ? std::clamp((seen.foot - a).norm() / length * metric, 0.0, metric) : 0.0;
+  }
   t.seen_ring_edge_count = static_cast<int>(seen_walls.node_in.size()) - 1;
   t.seen_forward_in_ring =
       seen.ring == 0 ? t.forward_in_ring

@@ -52,6 +52,7 @@ struct SimTruth {
   // ring's edge_index and forward_in_ring while the camera looks at the start ring.
   std::string seen_ring_id;
   int seen_edge_index = 0;
+  double seen_offset_in = 0.0;  // along that edge, ring order, scaled to its metric
   int seen_ring_edge_count = 0;
   bool seen_forward_in_ring = false;
   double distance_in = 0.0;       // true path length travelled (both directions count)
@@ -132,6 +133,7 @@ class WorldSim {
   struct RingWalls {
     std::string id;
     std::vector<Eigen::Vector2d> node_in;  // node i starts edge i; the last closes the ring
+    std::vector<double> metric_in;         // edge i's
   };
   struct WallSeen {
     int ring = -1;  // index into walls_

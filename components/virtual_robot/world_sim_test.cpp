@@ -272,6 +272,7 @@ corridors:
   WorldSim sim(floor, sensing::RobotConfig{}, c, start_in, 1);
   EXPECT_EQ(sim.Truth().seen_ring_id, "main");
   EXPECT_EQ(sim.Truth().seen_edge_index, sim.Truth().edge_index);
+  EXPECT_DOUBLE_EQ(sim.Truth().seen_offset_in, sim.Truth().offset_in);
   // Turn in place to face -y (down the wing), then drive 200 in.
   for (int i = 0; i < 2000; ++i) {
     const double error = std::remainder(-M_PI / 2.0 - sim.pose().theta_rad, 2.0 * M_PI);
@@ -293,6 +294,8 @@ corridors:
   const map::Node& b = wing.nodes[(t.seen_edge_index + 1) % wing.NodeCount()];
   EXPECT_NEAR(a.x_in, 788.0, 1e-6);
   EXPECT_NEAR(b.x_in, 788.0, 1e-6);
+  // The camera, square to that wall, meets it abreast of the base.
+  EXPECT_NEAR(t.seen_offset_in, std::abs(t.X_WR.y_in - a.y_in), 1.0);
   // Travelling -y along that wall: forward in the wing's ring order when its edge runs -y.
   EXPECT_EQ(t.seen_forward_in_ring, b.y_in < a.y_in);
   // Judged there, a pose on the main corridor is wrong and one on the wing right.
