@@ -464,8 +464,14 @@ int ShowStatus(const ConsoleOptions& o, std::ostream& out) {
   const double timeout_s = o.timeout_s > 0.0 ? o.timeout_s : 10.0;
   do {
     ex.Spin(runtime::KeepRunning(), Clock::now() + seconds(std::max(1.0, o.wait_s)));
+    // Until the first heartbeat, up to the timeout. (A `continue` here would test the loop's
+    // condition: a one-shot status ended at once, printing nothing, when discovery took
+    // longer than the first wait.)
+    while (latest.empty() && runtime::KeepRunning().load() &&
+           Clock::now() - start < seconds(timeout_s)) {
+      ex.Spin(runtime::KeepRunning(), Clock::now() + seconds(0.1));
+    }
     if (latest.empty()) {
-      if (Clock::now() - start < seconds(timeout_s)) continue;
       fmt::print(stderr, "no process heartbeat on system/status within {:g} s\n", timeout_s);
       return 1;
     }

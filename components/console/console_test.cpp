@@ -220,6 +220,26 @@ TEST_F(ConsoleLiveTest, InfoNamesEachEndpointsProcessHostAndQos) {
   EXPECT_THAT(status.str(), HasSubstr("last warning: test"));
 }
 
+TEST_F(ConsoleLiveTest, AOneShotStatusWaitsForAHeartbeatThatComesAfterItsFirstWindow) {
+  // The first heartbeat comes 2.5 s after the status reader starts, after its first 1 s
+  // window: a one-shot status still waits for it (up to the 10 s timeout) and prints it.
+  auto log = spdlog::default_logger();
+  runtime::SampleCounters counters(log);
+  runtime::StatusReporter heartbeat(publisher_, "late", "robot-b", counters);
+  std::thread later([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+    heartbeat.Publish(runtime::StatusReporter::State::kActive, "active");
+  });
+  options_.wait_s = 0.0;
+  options_.count = 1;
+  std::ostringstream status;
+  const int code = ShowStatus(options_, status);
+  later.join();
+  EXPECT_EQ(code, 0);
+  EXPECT_THAT(status.str(), HasSubstr("late"));
+  EXPECT_THAT(status.str(), HasSubstr("robot-b"));
+}
+
 TEST_F(ConsoleLiveTest, DoctorNamesAReliableReaderOnABestEffortTopic) {
   // A reliable reader of robot/odometry, which is written best effort: they never match.
   runtime::Participant wrong(
