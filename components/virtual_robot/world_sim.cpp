@@ -76,19 +76,19 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   edge_start_in_.push_back(s);
   length_in_ = s;
   BuildAxis(ring);
-  walls_.push_back({ring_id_, node_in_, {}});
-  for (const map::Edge& e : ring.edges) walls_.back().metric_in.push_back(e.metric_in);
+  const auto walls_of = [](const map::Ring& r) {
+    RingWalls w{r.id, {}, {}};
+    for (int i = 0; i <= r.EdgeCount(); ++i) {
+      const map::Node& n = r.nodes[i == r.EdgeCount() && r.closed ? 0 : i];
+      w.node_in.emplace_back(n.x_in, n.y_in);
+    }
+    for (const map::Edge& e : r.edges) w.metric_in.push_back(e.metric_in);
+    return w;
+  };
+  walls_.push_back(walls_of(ring));
   if (ring.outline == map::Outline::kCorridor) {
     for (int r = 0; r < map.RingCount(); ++r) {
-      if (r == ring_) continue;
-      const map::Ring& other = map.ring(r);
-      RingWalls w{other.id, {}, {}};
-      for (int i = 0; i <= other.EdgeCount(); ++i) {
-        const map::Node& n = other.nodes[i == other.EdgeCount() && other.closed ? 0 : i];
-        w.node_in.emplace_back(n.x_in, n.y_in);
-      }
-      for (const map::Edge& e : other.edges) w.metric_in.push_back(e.metric_in);
-      walls_.push_back(std::move(w));
+      if (r != ring_) walls_.push_back(walls_of(map.ring(r)));
     }
   }
 
@@ -224,6 +224,13 @@ WorldSim::WallSeen WorldSim::Look(const Eigen::Vector2d& p, const Eigen::Vector2
   return seen;
 }
 
+double WorldSim::OffsetAlong(const WallSeen& seen) const {
+  const RingWalls& w = walls_[seen.ring];
+  const Eigen::Vector2d a = w.node_in[seen.edge], b = w.node_in[seen.edge + 1];
+  const double metric = w.metric_in[seen.edge], length = (b - a).norm();
+  return length > 0.0 ? std::clamp((seen.foot - a).norm() / length * metric, 0.0, metric) : 0.0;
+}
+
 double WorldSim::Clearance(const Eigen::Vector2d& p) const {
   double best = std::numeric_limits<double>::infinity();
   for (int i : obstacle_panels_) {
@@ -313,14 +320,9 @@ SimTruth WorldSim::Truth() const {
   const double yaw = X_WR_.theta_rad + DegToRad(models_.camera.mount_yaw_deg);
   const Eigen::Vector2d ray{std::cos(yaw), std::sin(yaw)};
   const WallSeen own = Look(p, ray, 0);
-  const int edge = own.edge;
-  const Eigen::Vector2d foot = own.foot;
   t.optical_axis_on_wall = own.on_axis;
-  t.edge_index = edge;
-  const double metric = edge_start_in_[edge + 1] - edge_start_in_[edge];
-  const double length = (node_in_[edge + 1] - node_in_[edge]).norm();
-  t.offset_in = length > 0.0 ? std::clamp((foot - node_in_[edge]).norm() / length * metric, 0.0, metric)
-                             : 0.0;
+  t.edge_index = own.edge;
+  t.offset_in = OffsetAlong(own);
 
   // The nearest stretch of the hallway axis. The travel direction is judged on it (at a
   // corner, where two stretches are equally near, on the one the base travelled along).
@@ -358,12 +360,7 @@ SimTruth WorldSim::Truth() const {
   const RingWalls& seen_walls = walls_[seen.ring];
   t.seen_ring_id = seen_walls.id;
   t.seen_edge_index = seen.edge;
-  {
-    const Eigen::Vector2d a = seen_walls.node_in[seen.edge], b = seen_walls.node_in[seen.edge + 1];
-    const double metric = seen_walls.metric_in[seen.edge], length = (b - a).norm();
-    t.seen_offset_in =
-        length > 0.0 ? std::clamp((seen.foot - a).norm() / length * metric, 0.0, metric) : 0.0;
-  }
+  t.seen_offset_in = OffsetAlong(seen);
   t.seen_ring_edge_count = static_cast<int>(seen_walls.node_in.size()) - 1;
   t.seen_forward_in_ring =
       seen.ring == 0 ? t.forward_in_ring

@@ -144,6 +144,8 @@ class WorldSim {
   // The first wall of `walls_[only]` (or of every ring when only < 0) the ray from p meets
   // within twice the hallway's width; else the nearest.
   WallSeen Look(const Eigen::Vector2d& p, const Eigen::Vector2d& ray, int only) const;
+  // How far along its edge (ring order, scaled to the edge's metric) the wall was met.
+  double OffsetAlong(const WallSeen& seen) const;
   void BuildAxis(const map::Ring& ring);
   // Distance from p to the nearest wall, frame or leaf of the scene at the base's height.
   double Clearance(const Eigen::Vector2d& p) const;
