@@ -157,6 +157,19 @@ TEST(HallwayFollowerTest, AnEmptySectorAheadOfAbeamIsABendNotAnEnd) {
   EXPECT_FALSE(EmptySectorTurnRad(SilentBetween(200, 200, +1), +1, c).has_value());
   EXPECT_FALSE(EmptySectorTurnRad(SilentBetween(30, 60, +1), +1, c).has_value());
   EXPECT_FALSE(EmptySectorTurnRad(SilentBetween(30, 105, +1), +1, c).has_value());
+  // Stopped in the outer corner of the science wing's 60 deg bend, 27 in off its outer
+  // wall: the left silent from 15 to 90 deg, and on the right only the sensors that meet the
+  // walls near square answer (0, -15, -60, -75 deg; -30, -45 and -90 graze them).
+  std::vector<SonarRange> corner = SilentBetween(15, 90, +1);
+  for (int k = 0; k < c.sensor_count; ++k) {
+    const double rel = RadToDeg(std::remainder(SensorBearingRad(k, c), 2.0 * kPi));
+    for (const double grazing : {-30.0, -45.0, -90.0}) {
+      if (std::abs(rel - grazing) < 1e-6) corner[k] = SonarRange{};
+    }
+  }
+  turn = EmptySectorTurnRad(corner, +1, c);
+  ASSERT_TRUE(turn.has_value());
+  EXPECT_NEAR(RadToDeg(*turn), 52.5, 1e-6);
   // Both sides silent: an open hall, not a bend.
   std::vector<SonarRange> open(c.sensor_count);
   EXPECT_FALSE(EmptySectorTurnRad(open, +1, c).has_value());
