@@ -37,6 +37,7 @@ void BayesLocalizer::Reset() {
   std::fill(n_.begin(), n_.end(), 0.0);
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
+  outside_ = 0.0;
   status_ = RecoveryStatus::kEmpty;
   best_ = PoseBelief{};
   edges_ = 0;
@@ -154,18 +155,25 @@ RecoveryStatus BayesLocalizer::Add(const map::SensedEdge& edge) {
 }
 
 void BayesLocalizer::First(const map::SensedEdge& e) {
+  outside_ = 0.0;
+  std::fill(n_.begin(), n_.end(), 0.0);
+  std::fill(i1_.begin(), i1_.end(), 0.0);
+  std::fill(i2_.begin(), i2_.end(), 0.0);
+  AddPrior(e, 1.0);
+}
+
+void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
   const Confusion& cf = model_.confusion;
   const double eps = model_.settings.outlier;
   const bool door = map::IsDoorCode(e.code);
   const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
-  std::fill(i1_.begin(), i1_.end(), 0.0);
-  std::fill(i2_.begin(), i2_.end(), 0.0);
   for (int g = 0; g < index_.EdgeCount(); ++g) {
     const double len = index_.metric(g);
     const map::SymbolCode code = index_.code(g);
     // Prior: the start is uniform along the walls, so edge g holds it with len / total.
     const double prior = len / total_length_in_;
     double pn = 0.0, pi1 = 0.0, pi2 = 0.0;
+    double chained[2] = {0.0, 0.0};  // per direction, see below
     if (door) {
       if (map::IsDoorCode(code)) {
         const int k = code - 1, c = e.code - 1;
@@ -187,7 +195,7 @@ void BayesLocalizer::First(const map::SensedEdge& e) {
         if (wall) pi1 = cf.false_door * 0.5 * fit / total_length_in_;
         if (wall) {
           // ... or it began in an earlier wall or door and ran over missed doors into this
-          // wall (one sensed wall over a flat stretch). Direction-dependent: see below.
+          // wall (one sensed wall over a flat stretch). Direction-dependent.
           for (const int dir : {+1, -1}) {
             double chain = len, p = 1.0;
             int cur = g;
@@ -210,24 +218,26 @@ void BayesLocalizer::First(const map::SensedEdge& e) {
               if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
               cur = w;
             }
-            n_[State(g, dir)] = extra;  // added to below
+            chained[dir > 0 ? 0 : 1] = extra;
           }
         }
       } else {
         pn = clean * WallDensity(e.metric_in, len) / index_.EdgeCount();
       }
     }
-    const bool chained =
-        !door && code == map::kWallCode && code == e.code && e.metric_is_lower_bound;
     for (const int dir : {+1, -1}) {
       const int s = State(g, dir);
-      n_[s] = (chained ? n_[s] : 0.0) + pn + eps * unit * prior;
-      i1_[s] = pi1;
-      c1_[s] = e.metric_in;
-      lb1_[s] = 1;
-      i2_[s] = pi2;
-      c2_[s] = door ? e.metric_in : 0.0;
-      lb2_[s] = 1;
+      n_[s] += weight * (chained[dir > 0 ? 0 : 1] + pn + eps * unit * prior);
+      if (pi1 > 0.0 && weight * pi1 >= i1_[s]) {
+        c1_[s] = e.metric_in;
+        lb1_[s] = 1;
+      }
+      i1_[s] += weight * pi1;
+      if (pi2 > 0.0 && weight * pi2 >= i2_[s]) {
+        c2_[s] = door ? e.metric_in : 0.0;
+        lb2_[s] = 1;
+      }
+      i2_[s] += weight * pi2;
     }
   }
 }
@@ -242,6 +252,12 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   std::fill(nn_.begin(), nn_.end(), 0.0);
   std::fill(ni1_.begin(), ni1_.end(), 0.0);
   std::fill(ni2_.begin(), ni2_.end(), 0.0);
+  // Belief that passes out through a corridor's open end: the ring says nothing of where
+  // the robot goes from there (across the corridor beyond, into a hall), so that belief
+  // starts again from the prior, with what was sensed after it as a first edge. Belief that
+  // left with the wall sensed last time (outside_) starts again here too.
+  double leaving = outside_;
+  outside_ = 0.0;
 
   for (int s = 0; s < states_; ++s) {
     const int g = s / 2;
@@ -249,7 +265,9 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
     const double pn = n_[s];
     if (pn > 0.0) {
       const int n1 = index_.Step(g, dir);
-      if (n1 >= 0) {
+      if (n1 >= 0 && index_.open_end(n1)) {
+        leaving += pn;
+      } else if (n1 >= 0) {
         const int s1 = State(n1, dir);
         const map::SymbolCode code1 = index_.code(n1);
         const double angle = AngleFactor(n1, dir, e);
@@ -257,6 +275,16 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
         if (wall && code1 == map::kWallCode) {
           const double len1 = index_.metric(n1);
           nn_[s1] += pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1);
+          const int n2 = index_.Step(n1, dir);
+          if (n2 >= 0 && index_.open_end(n2)) {
+            // The wall before an open end, run on out through it to wherever the next edge
+            // was seen: the robot is outside from the next edge on.
+            const double reach = model_.settings.open_end_reach_in;
+            const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len1));
+            if (e.metric_in >= len1 - 2.0 * sigma && e.metric_in <= len1 + reach) {
+              outside_ += pn * angle * (1.0 - pf) / (reach + 2.0 * sigma);
+            }
+          }
           if (e.metric_in <= len1) {
             // W1 of a wall holding a false door: the ribbon is anywhere in the wall.
             const double add = pn * angle * pf / len1;
@@ -364,20 +392,29 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   c2_.swap(nc2_);
   lb1_.swap(nlb1_);
   lb2_.swap(nlb2_);
+  if (leaving > 0.0) {
+    // Outside the ring the robot met the next wall somewhere along it: a partial wall.
+    map::SensedEdge after = e;
+    if (!door) after.metric_is_lower_bound = true;
+    AddPrior(after, leaving);
+  }
 }
 
 void BayesLocalizer::Normalise() {
   double sum = 0.0;
   for (int s = 0; s < states_; ++s) sum += n_[s] + i1_[s] + i2_[s];
+  sum += outside_;
   if (!(sum > 0.0) || !std::isfinite(sum)) {
     // Nothing explains the sequence any more (e.g. an open ring ended under every
     // hypothesis): start again from this edge's prior.
     std::fill(n_.begin(), n_.end(), 1.0 / states_);
     std::fill(i1_.begin(), i1_.end(), 0.0);
     std::fill(i2_.begin(), i2_.end(), 0.0);
+    outside_ = 0.0;
     sum = 1.0;
   }
   const double inv = 1.0 / sum;
+  outside_ *= inv;
   best_ = PoseBelief{};
   for (int s = 0; s < states_; ++s) {
     double& a = n_[s];

@@ -20,7 +20,9 @@
 //   anything           with a small outlier probability, whatever the next edge is
 // From I1 a door is the false door (its class from the false-door distribution) -> I2; from
 // I2 a wall is the rest of the wall, W2 = L - W1 - door width. Adjacency angles, when
-// sensed, must agree with the map node. The first sensed edge is weighed by a prior uniform
+// sensed, must agree with the map node. Belief that reaches a corridor's open end
+// (map::IsOpenEnd) leaves the ring there and starts again from the prior (the wall sensed
+// last before it may run on out through it, as far as the next thing seen). The first sensed edge is weighed by a prior uniform
 // along the walls (a wall start is the part seen from the start point: any wall at least
 // that long). After each edge the belief is normalised; a pose is reported when the best
 // (edge, direction) holds at least `threshold` of the posterior.
@@ -83,6 +85,8 @@ class BayesLocalizer {
   double AngleFactor(int g, int dir, const map::SensedEdge& e) const;
   double WallDensity(double measured, double true_len) const;
   void First(const map::SensedEdge& e);
+  // Adds `weight` times the belief a first sensed edge `e` gives (a start anywhere).
+  void AddPrior(const map::SensedEdge& e, double weight);
   void Next(const map::SensedEdge& e);
   void Normalise();
   // Reverse() of the mass at (the last sensed edge before `first`, dir), travelled_in into
@@ -102,6 +106,9 @@ class BayesLocalizer {
   PoseBelief best_;
   int above_ = 0;  // consecutive edges the best place held the threshold
   bool skip_partial_ = false;  // after Reverse(): the re-seen partial edge is not evidence
+  // Belief that left the map's rings through an open end with the last sensed wall: it
+  // starts again from the prior at the next edge.
+  double outside_ = 0.0;
   int edges_ = 0;
   std::uint64_t rejected_ = 0;
 };

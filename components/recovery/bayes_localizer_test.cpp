@@ -194,6 +194,89 @@ TEST_F(BayesLocalizerTest, ExplainsAMissizedDoor) {
   EXPECT_EQ(b.best().dir, +1);
 }
 
+// The test corridor and a wing off it: a corridor outline whose end is open (an opening
+// between two 270 deg corners, map::IsOpenEnd), walked with the wall on the right:
+//   13 open end 88 | 14 W100 15 D30/30 16 W80 | 17 W88 (far end) | 18 W120 19 D30 20 W60
+map::Map CorridorWithWing() {
+  using map::Edge;
+  const map::Map corridor = testing::CorridorMap();
+  map::Ring wing;
+  wing.id = "wing";
+  Edge open_end;
+  open_end.type = map::EdgeType::kOpening;
+  open_end.metric_in = 88;
+  wing.edges = {open_end, Edge::Wall(100), Edge::Door(DoorClass::k30_30), Edge::Wall(80),
+                Edge::Wall(88), Edge::Wall(120), Edge::Door(DoorClass::k30), Edge::Wall(60)};
+  for (const double angle : {270.0, 270.0, 180.0, 180.0, 90.0, 90.0, 180.0, 180.0}) {
+    map::Node n;
+    n.angle_deg = angle;
+    wing.nodes.push_back(n);
+  }
+  return map::Map(corridor.info(), {corridor.ring(0), wing});
+}
+
+TEST(BayesLocalizerOpenEndTest, BeliefThatLeavesThroughAnOpenEndStartsAgainFromThePrior) {
+  const map::Map map = CorridorWithWing();
+  const map::MatchIndex index(map);
+  ASSERT_TRUE(index.open_end(13));
+  ASSERT_FALSE(index.open_end(0));
+  BayesModel m;
+  m.confusion = Resolve(ErrorModel::Paper(), index);
+  m.settings.threshold = 0.99;
+  m.settings.confirm_edges = 0;
+  BayesLocalizer b(index, m);
+  // Down the wing's far side toward its open end: sure of the place.
+  b.Add(Wall(70, kNaN, true));
+  b.Add(Door(DoorClass::k30));
+  b.Add(Wall(60));
+  ASSERT_EQ(b.best().edge, 20);
+  ASSERT_EQ(b.best().dir, +1);
+  // Out through the open end into the corridor, where the next thing seen is a 40 in door:
+  // the wing has nothing more to say, and the belief lies on the corridor's 40 in doors
+  // (edges 7 and 11), not on the open end taken for a wall.
+  b.Add(Door(DoorClass::k40));
+  double wing = 0.0, forties = 0.0;
+  for (int g = 0; g < index.EdgeCount(); ++g) {
+    for (const int dir : {+1, -1}) {
+      const double p = b.PoseProbability(g, dir);
+      if (index.RingOf(g) == 1) wing += p;
+      if (g == 7 || g == 11) forties += p;
+    }
+  }
+  EXPECT_LT(wing, 0.25);
+  EXPECT_GT(forties, 0.5);
+  // The corridor then tells which 40 in door it was.
+  b.Add(Wall(90));
+  b.Add(Door(DoorClass::k36));
+  b.Add(Wall(75));
+  EXPECT_EQ(b.best().edge, 10);
+  EXPECT_EQ(b.best().dir, +1);
+  EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
+}
+
+TEST(BayesLocalizerOpenEndTest, TheLastWallBeforeAnOpenEndMayRunOnOutThroughIt) {
+  const map::Map map = CorridorWithWing();
+  const map::MatchIndex index(map);
+  BayesModel m;
+  m.confusion = Resolve(ErrorModel::Paper(), index);
+  m.settings.threshold = 0.99;
+  m.settings.confirm_edges = 0;
+  BayesLocalizer b(index, m);
+  b.Add(Wall(70, kNaN, true));
+  b.Add(Door(DoorClass::k30));
+  // The 60 in wall before the open end, measured on to the door seen outside: 100 in more.
+  b.Add(Wall(160));
+  b.Add(Door(DoorClass::k40));
+  double forties = 0.0;
+  for (const int g : {7, 11}) forties += b.PoseProbability(g, +1) + b.PoseProbability(g, -1);
+  EXPECT_GT(forties, 0.5);
+  b.Add(Wall(90));
+  b.Add(Door(DoorClass::k36));
+  b.Add(Wall(75));
+  EXPECT_EQ(b.best().edge, 10);
+  EXPECT_EQ(b.best().dir, +1);
+}
+
 TEST_F(BayesLocalizerTest, InvalidEdgesAreRejected) {
   BayesLocalizer b = Make(ErrorModel::Paper());
   map::SensedEdge e = Door(DoorClass::k36);

@@ -109,6 +109,10 @@ struct BayesSettings {
   // to this long): a reversal's distance does not run along them. The localizer sets it to
   // its hallway view's max_step_in.
   double max_step_in = 36.0;
+  // A corridor's open end (map::IsOpenEnd): the wall sensed last before it runs on as far
+  // as the next thing seen outside, up to this much past the wall's end (across the open
+  // end and the corridor beyond: two 120 in hallways).
+  double open_end_reach_in = 240.0;
 };
 
 struct StudyConfig {

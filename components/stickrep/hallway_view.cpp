@@ -27,8 +27,16 @@ double HallwayView::WidestSeenDoorIn(int r) const {
   return width * std::tan(half_fov) - config_.door_view_margin_in;  // 2 (width / 2) tan
 }
 
-Edge HallwayView::Sensed(int r, const Edge& e) const {
-  if (e.IsOpening()) return Edge::Wall(e.metric_in);  // passed along the wall
+Edge HallwayView::Sensed(int r, int index) const {
+  const Ring& ring = original_.ring(r);
+  const Edge& e = ring.edges[index];
+  if (e.IsOpening()) {
+    // A corridor's open end stays an opening: the robot leaves the ring through it. Any
+    // other opening is passed along the wall.
+    const double after = ring.nodes[(index + 1) % ring.NodeCount()].angle_deg;
+    if (IsOpenEnd(e, ring.nodes[index].angle_deg, after)) return e;
+    return Edge::Wall(e.metric_in);
+  }
   if (!e.IsDoor()) return e;
   Edge door = e;
   if (config_.sensed_door_class) {
@@ -51,7 +59,7 @@ double HallwayView::BendTravelIn(int r, const Node& bend) const {
   return -2.0 * d * std::tan(DegToRad(0.5 * (bend.angle_deg - 180.0)));
 }
 
-bool HallwayView::WallLike(int r, const Edge& e) const { return Sensed(r, e).IsWall(); }
+bool HallwayView::WallLike(int r, int e) const { return Sensed(r, e).IsWall(); }
 
 bool HallwayView::IsStep(int r, int e) const {
   const Ring& ring = original_.ring(r);
@@ -140,9 +148,9 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
       if (step[e]) return false;
       int p = prev(e);
       if (p < 0) return false;
-      if (!step[p]) return bend(e) && WallLike(r, ring.edges[p]) && WallLike(r, ring.edges[e]);
+      if (!step[p]) return bend(e) && WallLike(r, p) && WallLike(r, e);
       while (p >= 0 && step[p] && p != e) p = ring.closed || p > 0 ? prev(p) : -1;
-      return p >= 0 && p != e && WallLike(r, ring.edges[p]) && WallLike(r, ring.edges[e]);
+      return p >= 0 && p != e && WallLike(r, p) && WallLike(r, e);
     };
     // Start at a kept edge that begins a view edge.
     int start = -1;
@@ -188,7 +196,7 @@ HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
       }
       node_of[r][e] = static_cast<int>(out.nodes.size());
       out.nodes.push_back(node);
-      out.edges.push_back(Sensed(r, ring.edges[e]));
+      out.edges.push_back(Sensed(r, e));
       members.push_back({e});
       view_of[e] = static_cast<int>(members.size()) - 1;
     }

@@ -7,7 +7,8 @@
 // view removes those steps: the step's edge and its two corners go, the coplanar walls
 // either side merge into one (lengths along the hallway add), and the localizer matches
 // sensed edges against the view. Likewise walls joined at shallow bends (curved walls as
-// chords) merge, openings (map format 2) are passed as wall, and corners of any other angle
+// chords) merge, openings (map format 2) are passed as wall (but a corridor's open end,
+// through which the robot leaves the ring: map::IsOpenEnd), and corners of any other angle
 // become the 90° or 270° turn the follower makes there. A door too wide for the camera to
 // see whole from the hallway's axis is passed as wall too. Positions in the view map back
 // to the map's own edges.
@@ -95,11 +96,11 @@ class HallwayView {
   // Whether original edge `e` of ring `r` is a side of a recess the follower passes
   // straight (HallwayViewConfig::max_recess_in).
   bool IsRecessSide(int r, int e) const;
-  // An edge of ring `r` as the follower and the detector sense it: an opening as wall, a
-  // door as the class the detector reports for its width, or as wall when the camera cannot
-  // see it whole.
-  Edge Sensed(int r, const Edge& e) const;
-  bool WallLike(int r, const Edge& e) const;
+  // Edge `index` of ring `r` as the follower and the detector sense it: an opening as wall
+  // (a corridor's open end stays an opening: IsOpenEnd), a door as the class the detector
+  // reports for its width, or as wall when the camera cannot see it whole.
+  Edge Sensed(int r, int index) const;
+  bool WallLike(int r, int index) const;
   // The hallway's width along ring r: the map's, else the settings'.
   double HallwayWidthIn(int r) const;
   // The widest door opening (one leaf of a double door) the camera sees whole along ring r.

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "stickrep/map_io.h"
+#include "stickrep/sequence_matcher.h"
 #include "stickrep/test_maps.h"
 
 namespace stickrep::map {
@@ -197,6 +198,49 @@ TEST(HallwayViewTest, ShallowBendsAndOpeningsAreOneWallAndCornersAreTurns) {
   const HallwayView sharp(map, HallwayViewConfig{36.0, 5.0, {}});
   EXPECT_EQ(sharp.view().ring(0).EdgeCount(), 7);
   EXPECT_DOUBLE_EQ(sharp.view().ring(0).nodes[6].angle_deg, 90.0);
+}
+
+// A corridor outline 88 in wide: open at its west end onto another corridor (an opening
+// between two 270 deg corners), a side opening 96 in wide in its north wall.
+const char* kOpenEnded = R"(stickrep_map: 2
+name: open_ended
+rings:
+  - id: wing
+    closed: true
+    outline: corridor
+    width_in: 88
+    path:
+      - node: {angle_deg: 270, xyz_in: [0, 0, 0]}
+      - edge: {type: opening, metric_in: 88}
+      - node: {angle_deg: 270, xyz_in: [0, 88, 0]}
+      - edge: {type: hallway, metric_in: 200}
+      - node: {angle_deg: 180, xyz_in: [200, 88, 0]}
+      - edge: {type: opening, metric_in: 96}
+      - node: {angle_deg: 180, xyz_in: [296, 88, 0]}
+      - edge: {type: hallway, metric_in: 204}
+      - node: {angle_deg: 90, xyz_in: [500, 88, 0]}
+      - edge: {type: hallway, metric_in: 88}
+      - node: {angle_deg: 90, xyz_in: [500, 0, 0]}
+      - edge: {type: hallway, metric_in: 500}
+)";
+
+TEST(HallwayViewTest, ACorridorsOpenEndStaysAnOpeningWhereASideOpeningIsWall) {
+  const Map map = ParseMap(kOpenEnded, "open_ended.yaml");
+  EXPECT_TRUE(IsOpenEnd(map.ring(0).edges[0], 270.0, 270.0));
+  EXPECT_FALSE(IsOpenEnd(map.ring(0).edges[2], 180.0, 180.0));
+  EXPECT_FALSE(IsOpenEnd(map.ring(0).edges[0], 90.0, 270.0));  // a step, not an end
+  EXPECT_FALSE(IsOpenEnd(map.ring(0).edges[1], 270.0, 270.0));  // a wall
+  const HallwayView view(map);
+  const Ring& r = view.view().ring(0);
+  // open end 88 | wall 200 + 96 + 204 | end wall 88 | wall 500
+  ASSERT_EQ(r.EdgeCount(), 4);
+  EXPECT_TRUE(r.edges[0].IsOpening());
+  EXPECT_TRUE(r.edges[1].IsWall());
+  EXPECT_DOUBLE_EQ(r.edges[1].metric_in, 500.0);
+  const MatchIndex index(view.view());
+  EXPECT_TRUE(index.open_end(0));
+  EXPECT_EQ(index.code(0), kWallCode);
+  EXPECT_FALSE(index.open_end(1));
 }
 
 // One side of an 88 in corridor: a 36 in door, a 44 in door and a 72 in double door.

@@ -92,6 +92,12 @@ DoorClass LeafClass(DoorClass door_class) {
   return door_class;
 }
 
+bool IsOpenEnd(const Edge& edge, double angle_before_deg, double angle_after_deg) {
+  const double a = angle_before_deg - 180.0, b = angle_after_deg - 180.0;
+  return edge.IsOpening() && std::abs(a) >= kOpenEndMinTurnDeg &&
+         std::abs(b) >= kOpenEndMinTurnDeg && a * b > 0.0;
+}
+
 Edge Edge::Wall(double metric_in) {
   Edge e;
   e.type = EdgeType::kHallway;

@@ -77,6 +77,15 @@ struct Edge {
   static Edge Door(DoorClass door_class, std::string pattern = "");
 };
 
+// A corridor's open end (map format 2): an opening between two corners that turn the same
+// way by at least kOpenEndMinTurnDeg (a corridor outline runs up one side, across the gap
+// and back down the other). A robot following the corridor passes out through it into
+// space the ring does not describe, where an opening between coplanar walls (a side
+// opening) it passes along the wall. `angle_before` and `angle_after` are the nodes at the
+// edge's ends.
+inline constexpr double kOpenEndMinTurnDeg = 45.0;
+bool IsOpenEnd(const Edge& edge, double angle_before_deg, double angle_after_deg);
+
 // One node: the adjacency angle between its two incident edges, measured inside the solid
 // (90 convex corner, 180 coplanar, 270 concave corner: §3.3), and its global pose.
 struct Node {

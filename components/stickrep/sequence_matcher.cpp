@@ -45,6 +45,7 @@ MatchIndex::MatchIndex(const Map& map) {
       metric_.push_back(e.metric_in);
       angle_start_.push_back(ring.nodes[i].angle_deg);
       angle_end_.push_back(ring.nodes[(i + 1) % ring.NodeCount()].angle_deg);
+      open_end_.push_back(IsOpenEnd(e, angle_start_.back(), angle_end_.back()) ? 1 : 0);
       ring_of_.push_back(r);
       by_code_[code_.back()].push_back(g);
     }

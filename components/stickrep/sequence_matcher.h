@@ -79,6 +79,9 @@ class MatchIndex {
   // Angle of the node at the start / end of edge g in ring order.
   double angle_start(int g) const { return angle_start_[g]; }
   double angle_end(int g) const { return angle_end_[g]; }
+  // Whether edge g is a corridor's open end (map::IsOpenEnd): travelling into it the robot
+  // leaves the ring. Matched as wall.
+  bool open_end(int g) const { return open_end_[g] != 0; }
   // Global indices of all edges with this code, in ring order.
   const std::vector<std::int32_t>& EdgesWithCode(SymbolCode code) const { return by_code_[code]; }
 
@@ -103,6 +106,7 @@ class MatchIndex {
   std::vector<double> metric_;
   std::vector<double> angle_start_;
   std::vector<double> angle_end_;
+  std::vector<std::uint8_t> open_end_;
   std::vector<std::int32_t> ring_of_;
   std::vector<std::int32_t> ring_offset_;
   std::vector<std::int32_t> ring_size_;
