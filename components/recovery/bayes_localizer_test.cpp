@@ -17,15 +17,20 @@ using testing::Wall;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+BayesLocalizer MakeLocalizer(const map::MatchIndex& index, const ErrorModel& em,
+                            double threshold = 0.99, int confirm_edges = 0) {
+  BayesModel m;
+  m.confusion = Resolve(em, index);
+  m.noise = SensingNoise{};
+  m.settings.threshold = threshold;
+  m.settings.confirm_edges = confirm_edges;
+  return BayesLocalizer(index, m);
+}
+
 class BayesLocalizerTest : public ::testing::Test {
  protected:
   BayesLocalizer Make(const ErrorModel& em, double threshold = 0.99, int confirm_edges = 0) {
-    BayesModel m;
-    m.confusion = Resolve(em, index_);
-    m.noise = SensingNoise{};
-    m.settings.threshold = threshold;
-    m.settings.confirm_edges = confirm_edges;
-    return BayesLocalizer(index_, m);
+    return MakeLocalizer(index_, em, threshold, confirm_edges);
   }
   map::Map map_ = testing::CorridorMap();
   map::MatchIndex index_{map_};
@@ -215,16 +220,23 @@ map::Map CorridorWithWing() {
   return map::Map(corridor.info(), {corridor.ring(0), wing});
 }
 
-TEST(BayesLocalizerOpenEndTest, BeliefThatLeavesThroughAnOpenEndStartsAgainFromThePrior) {
-  const map::Map map = CorridorWithWing();
-  const map::MatchIndex index(map);
+class BayesLocalizerOpenEndTest : public ::testing::Test {
+ protected:
+  // The posterior on the corridor's two 40 in doors (edges 7 and 11), both directions.
+  static double OnTheForties(const BayesLocalizer& b) {
+    double p = 0.0;
+    for (const int g : {7, 11}) p += b.PoseProbability(g, +1) + b.PoseProbability(g, -1);
+    return p;
+  }
+  map::Map map_ = CorridorWithWing();
+  map::MatchIndex index_{map_};
+};
+
+TEST_F(BayesLocalizerOpenEndTest, BeliefThatLeavesThroughAnOpenEndStartsAgainFromThePrior) {
+  const map::MatchIndex& index = index_;
   ASSERT_TRUE(index.open_end(13));
   ASSERT_FALSE(index.open_end(0));
-  BayesModel m;
-  m.confusion = Resolve(ErrorModel::Paper(), index);
-  m.settings.threshold = 0.99;
-  m.settings.confirm_edges = 0;
-  BayesLocalizer b(index, m);
+  BayesLocalizer b = MakeLocalizer(index, ErrorModel::Paper());
   // Down the wing's far side toward its open end: sure of the place.
   b.Add(Wall(70, kNaN, true));
   b.Add(Door(DoorClass::k30));
@@ -235,16 +247,12 @@ TEST(BayesLocalizerOpenEndTest, BeliefThatLeavesThroughAnOpenEndStartsAgainFromT
   // the wing has nothing more to say, and the belief lies on the corridor's 40 in doors
   // (edges 7 and 11), not on the open end taken for a wall.
   b.Add(Door(DoorClass::k40));
-  double wing = 0.0, forties = 0.0;
+  double wing = 0.0;
   for (int g = 0; g < index.EdgeCount(); ++g) {
-    for (const int dir : {+1, -1}) {
-      const double p = b.PoseProbability(g, dir);
-      if (index.RingOf(g) == 1) wing += p;
-      if (g == 7 || g == 11) forties += p;
-    }
+    if (index.RingOf(g) == 1) wing += b.PoseProbability(g, +1) + b.PoseProbability(g, -1);
   }
   EXPECT_LT(wing, 0.25);
-  EXPECT_GT(forties, 0.5);
+  EXPECT_GT(OnTheForties(b), 0.5);
   // The corridor then tells which 40 in door it was.
   b.Add(Wall(90));
   b.Add(Door(DoorClass::k36));
@@ -254,22 +262,14 @@ TEST(BayesLocalizerOpenEndTest, BeliefThatLeavesThroughAnOpenEndStartsAgainFromT
   EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
 }
 
-TEST(BayesLocalizerOpenEndTest, TheLastWallBeforeAnOpenEndMayRunOnOutThroughIt) {
-  const map::Map map = CorridorWithWing();
-  const map::MatchIndex index(map);
-  BayesModel m;
-  m.confusion = Resolve(ErrorModel::Paper(), index);
-  m.settings.threshold = 0.99;
-  m.settings.confirm_edges = 0;
-  BayesLocalizer b(index, m);
+TEST_F(BayesLocalizerOpenEndTest, TheLastWallBeforeAnOpenEndMayRunOnOutThroughIt) {
+  BayesLocalizer b = MakeLocalizer(index_, ErrorModel::Paper());
   b.Add(Wall(70, kNaN, true));
   b.Add(Door(DoorClass::k30));
   // The 60 in wall before the open end, measured on to the door seen outside: 100 in more.
   b.Add(Wall(160));
   b.Add(Door(DoorClass::k40));
-  double forties = 0.0;
-  for (const int g : {7, 11}) forties += b.PoseProbability(g, +1) + b.PoseProbability(g, -1);
-  EXPECT_GT(forties, 0.5);
+  EXPECT_GT(OnTheForties(b), 0.5);
   b.Add(Wall(90));
   b.Add(Door(DoorClass::k36));
   b.Add(Wall(75));
