@@ -1,9 +1,7 @@
 #include "camera/camera_node.h"
 
-#include <fmt/format.h>
-
-#include "camera/frame_check.h"
-#include "runtime/endpoint.h"
+#include "camera/camera_component.h"
+#include "runtime/component_node.h"
 #include "sensing/robot_config.h"
 #include "sensorsPubSubTypes.h"
 
@@ -11,10 +9,9 @@ namespace stickrep::camera {
 
 namespace {
 
-class CameraNode : public runtime::ProcessNode {
- public:
-  void Configure(runtime::NodeContext& ctx) override {
-    ctx_ = &ctx;
+class CameraNode : public runtime::ComponentNode {
+  std::unique_ptr<component::Component> Build(runtime::NodeContext& ctx,
+                                              component::Context& cc) override {
     const std::string device = ctx.config.Get<std::string>("device");
     if (device == "v4l2") {
       ctx.config.Fail("device", "the V4L2 camera driver is not built yet; use 'virtual'");
@@ -23,48 +20,14 @@ class CameraNode : public runtime::ProcessNode {
     }
     ctx.config.Finish();
     const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
-    width_px_ = static_cast<uint32_t>(robot.camera.image_width_px);
-    height_px_ = static_cast<uint32_t>(robot.camera.image_height_px);
-    writer_ = std::make_unique<runtime::Writer<msgs::ImagePubSubType>>(ctx.participant,
-                                                                      "robot/camera/image");
-    frames_ = std::make_unique<runtime::Reader<msgs::ImagePubSubType>>(
-        ctx.participant, ctx.executor, "device/camera/frame",
-        [this](const msgs::Image& m) { OnFrame(m); });
+    auto camera = std::make_unique<CameraComponent>(
+        cc, static_cast<uint32_t>(robot.camera.image_width_px),
+        static_cast<uint32_t>(robot.camera.image_height_px),
+        Publish<msgs::ImagePubSubType>("robot/camera/image"));
+    Feed<msgs::ImagePubSubType>("device/camera/frame",
+                                [c = camera.get()](const message::Image& f) { c->OnFrame(f); });
+    return camera;
   }
-
-  std::string Summary() const override {
-    return fmt::format("{} frames of {} x {} px passed on", passed_, width_px_, height_px_);
-  }
-
- private:
-  void OnFrame(const msgs::Image& frame) {
-    ctx_->counters.CountIn();
-    const auto problem = CheckFrame(
-        FrameShape{frame.width_px(), frame.height_px(), frame.step_bytes(), frame.encoding(),
-                   frame.data().size()},
-        width_px_, height_px_);
-    if (problem) {
-      ctx_->counters.Drop("device/camera/frame", *problem);
-      return;
-    }
-    if (frame.header().stamp_ns() < last_stamp_ns_) {
-      ctx_->counters.Drop("device/camera/frame", "time went backwards");
-      return;
-    }
-    last_stamp_ns_ = frame.header().stamp_ns();
-    msgs::Image out = frame;
-    if (writer_->Publish(out, frame.header().stamp_ns())) {
-      ctx_->counters.CountOut();
-      passed_++;
-    }
-  }
-
-  runtime::NodeContext* ctx_ = nullptr;
-  uint32_t width_px_ = 0, height_px_ = 0;
-  int64_t last_stamp_ns_ = 0;
-  uint64_t passed_ = 0;
-  std::unique_ptr<runtime::Writer<msgs::ImagePubSubType>> writer_;
-  std::unique_ptr<runtime::Reader<msgs::ImagePubSubType>> frames_;
 };
 
 }  // namespace

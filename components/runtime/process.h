@@ -10,36 +10,15 @@
 #include <string>
 
 #include "common/strict_yaml.h"
+#include "component/sample_counters.h"
 #include "runtime/executor.h"
 #include "runtime/participant.h"
 #include "runtime/system_config.h"
 
 namespace stickrep::runtime {
 
-// Counts what a process takes in, sends out and drops, and warns about drops without
-// flooding the log: the first few of each reason, then every 100th.
-class SampleCounters {
- public:
-  explicit SampleCounters(std::shared_ptr<spdlog::logger> log) : log_(std::move(log)) {}
-  void CountIn() { in_++; }
-  void CountOut() { out_++; }
-  // A bad sample was dropped: counted per reason and warned about.
-  void Drop(const std::string& topic, const std::string& reason);
-  uint64_t in() const { return in_; }
-  uint64_t out() const { return out_; }
-  uint64_t dropped() const { return dropped_; }
-  const std::map<std::string, uint64_t>& dropped_by_reason() const { return by_reason_; }
-  // The last drop, as warned ("dropped a sample on T: reason"); empty before the first.
-  const std::string& last_warning() const { return last_warning_; }
-
- private:
-  std::shared_ptr<spdlog::logger> log_;
-  uint64_t in_ = 0;
-  uint64_t out_ = 0;
-  uint64_t dropped_ = 0;
-  std::map<std::string, uint64_t> by_reason_;
-  std::string last_warning_;
-};
+// What a process took in, sent and dropped (the component model's counters).
+using SampleCounters = component::SampleCounters;
 
 // What a process's node gets when it is configured: the DDS participant, the executor that
 // runs its callbacks, its logger, the shared system settings and its own config section.
