@@ -1,4 +1,4 @@
-// stickrep-whereami: seeded Where-am-I runs of the whole stack's logic without middleware,
+// stickrep-whereami: seeded Where-am-I runs of the whole stack's components in one process,
 // each judged against the simulated truth, and their summary beside Table 6.22.
 #include <CLI/CLI.hpp>
 #include <iostream>

@@ -34,7 +34,7 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
   const double doors = std::max<long>(1, true_doors);
   m.door_correct = correct / doors;
   m.door_missized = missized / doors;
-  m.door_missed = 1.0 - m.door_correct - m.door_missized;
+  m.door_missed = missed / doors;  // the three add up: every true door is one of them
   m.wall_false_door = static_cast<double>(false_doors) / std::max<long>(1, true_walls);
   for (int t = 0; t < map::kDoorClassCount; ++t) {
     long row = 0;

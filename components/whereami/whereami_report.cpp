@@ -202,7 +202,7 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
                                    map::HallwayView(*setup.map, setup.localizer.view).view());
     if (options.measure_ft > 0.0) return Measure(setup, options, out);
     out << fmt::format(
-        "Where-am-I runs without middleware: map '{}' ({}), seeds {}..{}, {:.0f} in hallway, "
+        "Where-am-I runs of the components in one process: map '{}' ({}), seeds {}..{}, {:.0f} in hallway, "
         "start up to {:g} in off the axis and {:g} deg turned; matcher {}{}\n",
         setup.map->info().name, setup.map_file, options.first_seed,
         options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
@@ -266,6 +266,8 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
                       {"sim_s", r.sim_s},
                       {"ended", r.ended},
                       {"ending", ToString(r.ending())},
+                      {"sensed", r.sensed_trace},
+                      {"drops", r.drops},
                       {"start_redraws", r.start_redraws}});
     }
     const Summary s = Summarize(results);

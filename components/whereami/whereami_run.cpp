@@ -1,6 +1,7 @@
 #include "whereami/whereami_run.h"
 
 #include <fmt/format.h>
+#include <spdlog/sinks/null_sink.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,17 +9,13 @@
 #include "common/config_paths.h"
 #include "common/strict_yaml.h"
 #include "common/units.h"
-#include "executive/executive.h"
-#include "landmark/landmark_pipeline.h"
+#include "localizer/edge_assembler.h"
 #include "localizer/sensed_doors.h"
-#include "localizer/localizer.h"
-#include "locomotion/drive.h"
-#include "locomotion/hallway_behaviour.h"
-#include "sonar/sonar_gate.h"
 #include "stickrep/hallway_view.h"
 #include "stickrep/map_io.h"
 #include "stickrep/sequence_matcher.h"
 #include "virtual_robot/world_sim.h"
+#include "whereami/in_process_stack.h"
 
 namespace stickrep::whereami {
 
@@ -33,37 +30,11 @@ StrictYaml Section(const std::string& file, const std::string& key) {
   return StrictYaml::LoadFile(file).Child(key);
 }
 
-// A periodic event on the simulated clock.
-struct Every {
-  double period_s;
-  double next_s = 0.0;
-  bool Due(double t) {
-    if (t + 1e-9 < next_s) return false;
-    next_s += period_s;
-    return true;
-  }
-};
-
-// One trace line per change of the localizer's estimate: the newest sensed edge, the best
-// place with its probability, and where the robot truly is.
-void TraceBelief(double t, const localizer::Localizer& localizer, const map::HallwayView& view,
-                 const virtual_robot::WorldSim& sim, int ring, RunResult& result) {
-  if (result.behaviour_log.size() >= 400) return;
-  const localizer::PoseEstimate& e = localizer.estimate();
-  const std::vector<map::SensedEdge>& seq = localizer.sensed_sequence();
-  const std::string newest = seq.empty() ? "-" : map::Describe(seq.back());
-  const virtual_robot::SimTruth truth = sim.Truth();
-  std::string best = "no place";
-  if (!e.hypotheses.empty()) {
-    const localizer::Hypothesis& h = e.hypotheses.front();
-    best = fmt::format("view edge {} {} p={:.3f}", h.edge, h.dir > 0 ? "fwd" : "back",
-                       h.probability);
-  }
-  result.behaviour_log.push_back(fmt::format(
-      "{:7.1f} s  localizer {}: newest {}, best {}, truth view edge {} {}: {}", t,
-      localizer::ToString(e.status), newest, best,
-      view.ViewEdge(ring, truth.edge_index), truth.forward_in_ring ? "fwd" : "back",
-      e.message));
+// Components log to nowhere in a Where-am-I run: its report says what happened.
+std::shared_ptr<spdlog::logger> QuietLogger() {
+  static const auto log = std::make_shared<spdlog::logger>(
+      "in-process", std::make_shared<spdlog::sinks::null_sink_mt>());
+  return log;
 }
 
 }  // namespace
@@ -110,223 +81,242 @@ Ending RunResult::ending() const {
   return first->correct ? Ending::kCorrect : Ending::kWrong;
 }
 
+namespace {
+
+// A run in progress: the stack, and what the run watches of it (the pose judged against the
+// truth, the kidnap, the traces and the measured edges).
+class Run {
+ public:
+  Run(const RunSetup& setup, const RunOptions& options, virtual_robot::PlacedRobot placed,
+      int ring);
+  RunResult Finish();
+
+ private:
+  void OnPose(const message::LocalizationPose& p);
+  Recovery Judge(const message::LocalizationPose& p) const;
+  void AfterStep();
+  void TraceBelief(const message::LocalizationPose& p);
+  double NowS() const { return stack_.executor().ElapsedS(); }
+
+  const map::Map& map_;
+  const RunOptions& options_;
+  const int ring_;
+  const bool measuring_;
+  InProcessStack stack_;
+  virtual_robot::WorldSim& sim_;
+  const map::HallwayView& view_;
+  // Measuring: the same assembly as the localizer's, never restarted but by reversals.
+  localizer::EdgeAssembler assembler_;
+  EdgeErrorMeter meter_;
+  component::Publisher<message::MissionGoal>& goals_;
+  RunResult result_;
+  double epoch_in_ = 0.0, epoch_s_ = 0.0;  // where the current recovery began
+  double kidnap_at_s_ = -1.0;
+  bool was_localized_ = false;
+  int last_view_edge_ = -1;
+  std::string last_belief_;
+  message::LocomotionState last_state_ = message::LocomotionState::kStopped;
+};
+
+Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::PlacedRobot placed,
+         int ring)
+    : map_(*setup.map),
+      options_(options),
+      ring_(ring),
+      measuring_(options.measure_ft > 0.0),
+      stack_(setup, std::move(placed.sim), QuietLogger(), !measuring_),
+      sim_(stack_.sim()),
+      view_(stack_.localizer().view()),
+      assembler_(localizer::MakeLocalizerConfig(setup.localizer, view_.view()).assembler),
+      // From 20 ft on: the robot has aligned and the partial first edges are behind.
+      meter_(view_.view().ring(ring), assembler_, 240.0),
+      goals_(stack_.executor().Advertise<message::MissionGoal>("mission/goal")) {
+  result_.start_redraws = placed.redraws;
+  const virtual_robot::SimTruth t = sim_.Truth();
+  result_.start = fmt::format("ring '{}' edge {} + {:.1f} in, {:+.1f} in off the axis, heading "
+                              "{:+.1f} deg",
+                              sim_.ring_id(), t.edge_index, t.offset_in, t.lateral_offset_in,
+                              RadToDeg(t.heading_error_rad));
+  component::SimExecutor& e = stack_.executor();
+  e.Subscribe<message::LocalizationPose>(
+      "localization/pose", [this](const message::LocalizationPose& p) { OnPose(p); });
+  e.Subscribe<message::LandmarkObservation>(
+      "perception/landmark", [this](const message::LandmarkObservation& o) {
+        ++result_.doors_observed;
+        if (measuring_) {
+          assembler_.AddSighting({localizer::ToMapDoorClass(o.door_class), o.width_in,
+                                  o.confidence, o.odometry_distance_in + o.center_offset_in});
+        }
+      });
+  e.Subscribe<message::MotionState>("robot/motion/state", [this](const message::MotionState& m) {
+    if (options_.trace && m.state != last_state_ && result_.behaviour_log.size() < 200) {
+      result_.behaviour_log.push_back(fmt::format("{:7.1f} s  {}", NowS(), m.message));
+    }
+    last_state_ = m.state;
+  });
+  if (measuring_) {
+    const int coaxial = setup.robot.camera.coaxial_sensor;
+    const double head_in = setup.robot.sonar_ring.head_radius_in;
+    e.Subscribe<message::SonarScan>("robot/sonar", [this, coaxial, head_in](const message::SonarScan& s) {
+      if (s.state[coaxial] == sonar::ReadingState::kValid) {
+        assembler_.SetWallRange(s.range_in[coaxial] + head_in);
+      }
+    });
+    e.Subscribe<message::Odometry>("robot/odometry", [this](const message::Odometry& o) {
+      const virtual_robot::SimTruth truth = sim_.Truth();
+      meter_.Advance(o.distance_in, o.heading_rad,
+                     truth.optical_axis_on_wall ? view_.ViewEdge(ring_, truth.edge_index) : -1);
+      if (InchesToFeet(truth.distance_in) >= options_.measure_ft) {
+        result_.ended = fmt::format("measured over {:.0f} ft", options_.measure_ft);
+      }
+    });
+  }
+  e.AddTimer(1.0 / setup.virtual_robot.sim_rate_hz, [this] { AfterStep(); });
+}
+
+// A pose is judged when the localizer first declares it (and again after a kidnap), as the
+// virtual robot process judges it.
+void Run::OnPose(const message::LocalizationPose& p) {
+  if (measuring_) return;  // the robot travels its distance whatever the pose
+  if (options_.trace) TraceBelief(p);
+  if (p.status == message::LocalizationStatus::kLocalized && p.candidate_count > 0) {
+    if (!was_localized_) {
+      const Recovery r = Judge(p);
+      if (!result_.first) {
+        result_.first = r;
+        if (options_.kidnap_after_s < 0.0) {
+          result_.ended = "localized";
+        } else {
+          // Keep travelling: a goal half the ring ahead.
+          const int n = map_.ring(ring_).EdgeCount();
+          const int ahead = r.forward ? r.edge + n / 2 : r.edge - n / 2 + n;
+          message::MissionGoal goal;
+          goal.header.stamp_ns = stack_.executor().NowNs();
+          goal.goal_id = "far";
+          goal.target = fmt::format("{}/{}", r.ring_id, ahead % n);
+          goals_.Publish(goal);
+          kidnap_at_s_ = NowS() + options_.kidnap_after_s;
+        }
+      } else if (result_.kidnapped) {
+        result_.second = r;
+        result_.ended = "localized again after the kidnap";
+      }
+    }
+    was_localized_ = true;
+  } else if (p.status == message::LocalizationStatus::kLost) {
+    if (result_.kidnapped && !result_.lost_detected) {
+      result_.lost_detected = true;
+      result_.lost_after_ft = InchesToFeet(sim_.Truth().distance_in - epoch_in_);
+    }
+    was_localized_ = false;
+  } else {
+    was_localized_ = false;
+  }
+}
+
+Recovery Run::Judge(const message::LocalizationPose& p) const {
+  const virtual_robot::SimTruth truth = sim_.Truth();
+  Recovery r;
+  r.ring_id = p.best.ring_id;
+  r.edge = p.best.edge_index;
+  r.forward = p.best.forward;
+  r.truth_ring_id = truth.seen_ring_id;
+  r.truth_edge = truth.seen_edge_index;
+  r.truth_forward = truth.seen_forward_in_ring;
+  r.correct = virtual_robot::PoseMatchesTruth(r.ring_id, r.edge, r.forward, truth);
+  r.edges_sensed = p.edges_sensed;
+  r.distance_ft = InchesToFeet(truth.distance_in - epoch_in_);
+  r.time_s = NowS() - epoch_s_;
+  return r;
+}
+
+// After each step of the world: the kidnap, the true trace, the path and the envelope.
+void Run::AfterStep() {
+  if (kidnap_at_s_ >= 0.0 && NowS() >= kidnap_at_s_ && !result_.kidnapped) {
+    result_.kidnapped = true;
+    sim_.Teleport(sim_.RingPosition() + options_.kidnap_jump_in);
+    epoch_in_ = sim_.Truth().distance_in;
+    epoch_s_ = NowS();
+  }
+  const virtual_robot::SimTruth truth = sim_.Truth();
+  if (options_.trace) {
+    const int e = view_.ViewEdge(ring_, truth.edge_index);
+    if (e != last_view_edge_) {
+      last_view_edge_ = e;
+      const map::Edge& edge = view_.view().ring(ring_).edges[e];
+      map::SensedEdge as_sensed;
+      as_sensed.code = map::CodeOf(edge);
+      as_sensed.metric_in = edge.metric_in;
+      result_.true_trace += fmt::format("{}[{}] ", map::Describe(as_sensed), e);
+    }
+  }
+  if (options_.record_path) {
+    const std::pair<double, double> at{truth.X_WR.x_in, truth.X_WR.y_in};
+    if (result_.path.empty() || std::hypot(at.first - result_.path.back().first,
+                                           at.second - result_.path.back().second) > 3.0) {
+      result_.path.push_back(at);
+    }
+  }
+  if (truth.corner_distance_in > kEnvelopeCornerDistanceIn &&
+      truth.distance_in > kEnvelopeSettleDistanceIn) {
+    result_.max_offset_in = std::max(result_.max_offset_in, std::abs(truth.lateral_offset_in));
+    result_.max_heading_deg =
+        std::max(result_.max_heading_deg, std::abs(RadToDeg(truth.heading_error_rad)));
+  }
+}
+
+// One trace line per change of the localizer's estimate: the newest sensed edge, the best
+// place with its probability, and where the robot truly is.
+void Run::TraceBelief(const message::LocalizationPose& p) {
+  const std::string belief = fmt::format("{} {} {}", static_cast<int>(p.status), p.edges_sensed,
+                                         p.message);
+  if (belief == last_belief_ || result_.behaviour_log.size() >= 400) return;
+  last_belief_ = belief;
+  const std::vector<map::SensedEdge>& seq = stack_.localizer().localizer().sensed_sequence();
+  const std::string newest = seq.empty() ? "-" : map::Describe(seq.back());
+  const virtual_robot::SimTruth truth = sim_.Truth();
+  const std::string best =
+      p.candidate_count == 0
+          ? "no place"
+          : fmt::format("ring '{}' edge {} {} p={:.3f}", p.best.ring_id, p.best.edge_index,
+                        p.best.forward ? "fwd" : "back", p.best.probability);
+  result_.behaviour_log.push_back(fmt::format(
+      "{:7.1f} s  localizer {}: newest {}, best {}, truth view edge {} {}: {}", NowS(),
+      localizer::ToString(stack_.localizer().localizer().estimate().status), newest, best,
+      view_.ViewEdge(ring_, truth.edge_index), truth.forward_in_ring ? "fwd" : "back",
+      p.message));
+}
+
+RunResult Run::Finish() {
+  stack_.executor().RunUntil([this] { return !result_.ended.empty(); }, options_.max_sim_s);
+  if (result_.ended.empty()) {
+    result_.ended = fmt::format("no pose after {:.0f} s simulated", options_.max_sim_s);
+  }
+  result_.sim_s = NowS();
+  result_.frames = stack_.frames_rendered();
+  result_.collisions = sim_.Truth().collisions;
+  const std::vector<map::SensedEdge>& sensed =
+      measuring_ ? assembler_.sequence() : stack_.localizer().localizer().sensed_sequence();
+  result_.sensed_trace = map::Describe(sensed);
+  if (measuring_) result_.errors = meter_.Finish();
+  result_.drops = stack_.Drops();
+  return std::move(result_);
+}
+
+}  // namespace
+
 RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   const map::Map& map = *setup.map;
-  const sensing::RobotConfig& robot = setup.robot;
-  virtual_robot::VirtualRobotConfig vr = setup.virtual_robot;
+  RunSetup run_setup = setup;
+  virtual_robot::VirtualRobotConfig& vr = run_setup.virtual_robot;
   vr.seed = options.seed;
   if (!options.ring_id.empty()) vr.world.ring_id = options.ring_id;
-  const bool measuring = options.measure_ft > 0.0;
   const int ring = vr.world.ring_id.empty() ? 0 : map.FindRing(vr.world.ring_id);
   if (ring < 0) throw std::invalid_argument("no ring '" + vr.world.ring_id + "' in the map");
-  virtual_robot::PlacedRobot placed = virtual_robot::PlaceRobot(map, robot, vr, ring);
-  virtual_robot::WorldSim& sim = *placed.sim;
-
-  const sonar::SonarGateConfig gate = sonar::GateConfigFor(robot);
-  locomotion::HallwayBehaviour behaviour(setup.locomotion.behaviour);
-  locomotion::BehaviourState last_state = locomotion::BehaviourState::kNoScan;
-  locomotion::Odometer odometer(robot.base.wheel_base_in);
-  const landmark::LandmarkPipeline pipeline(robot, setup.landmark.detector,
-                                            setup.landmark.estimator);
-  const map::HallwayView view(map, setup.localizer.view);
-  const localizer::LocalizerConfig localizer_config =
-      localizer::MakeLocalizerConfig(setup.localizer, view.view());
-  localizer::Localizer localizer(view.view(), localizer_config);
-  // Measuring: the same assembly as the localizer's, never restarted but by reversals.
-  localizer::EdgeAssembler assembler(localizer_config.assembler);
-  // From 20 ft on: the robot has aligned and the partial first edges are behind.
-  EdgeErrorMeter meter(view.view().ring(ring), assembler, 240.0);
-  executive::Executive executive(map, setup.executive.mission);
-  for (const std::string& name : setup.executive.mission.required_components) {
-    executive.mission().OnComponentActive(name);
-  }
-
-  RunResult result;
+  virtual_robot::PlacedRobot placed = virtual_robot::PlaceRobot(map, setup.robot, vr, ring);
+  Run run(run_setup, options, std::move(placed), ring);
+  RunResult result = run.Finish();
   result.seed = vr.seed;
-  result.start_redraws = placed.redraws;
-  {
-    const virtual_robot::SimTruth t = sim.Truth();
-    result.start = fmt::format("ring '{}' edge {} + {:.1f} in, {:+.1f} in off the axis, heading "
-                               "{:+.1f} deg",
-                               sim.ring_id(), t.edge_index, t.offset_in, t.lateral_offset_in,
-                               RadToDeg(t.heading_error_rad));
-  }
-
-  Every sim_step{1.0 / vr.sim_rate_hz};
-  Every encoders{1.0 / vr.encoder_rate_hz};
-  Every sonar{1.0 / vr.sonar_rate_hz};
-  Every camera{1.0 / vr.camera_rate_hz};
-  const int coaxial = robot.camera.coaxial_sensor;
-  sensing::SonarScan last_scan;
-  locomotion::WheelSpeeds wheels;
-  bool moving = false;
-  double epoch_in = 0.0, epoch_s = 0.0;  // where the current recovery began
-  double kidnap_at_s = -1.0;
-  bool was_localized = false;
-
-  const auto judge = [&](double t) {
-    const localizer::PoseEstimate& e = localizer.estimate();
-    const localizer::Hypothesis h = localizer::OnOriginalMap(view, e.hypotheses.front());
-    const virtual_robot::SimTruth truth = sim.Truth();
-    Recovery r;
-    r.ring_id = map.ring(h.ring).id;
-    r.edge = h.edge;
-    r.forward = h.dir > 0;
-    r.truth_ring_id = truth.seen_ring_id;
-    r.truth_edge = truth.seen_edge_index;
-    r.truth_forward = truth.seen_forward_in_ring;
-    r.correct = virtual_robot::PoseMatchesTruth(r.ring_id, r.edge, r.forward, truth);
-    r.edges_sensed = e.edges_sensed;
-    r.distance_ft = InchesToFeet(truth.distance_in - epoch_in);
-    r.time_s = t - epoch_s;
-    executive.OnLocalized(executive::MapPose{h.ring, h.edge, h.dir, h.offset_in},
-                          fmt::format("ring '{}' edge {}", r.ring_id, r.edge));
-    return r;
-  };
-
-  int last_view_edge = -1;
-  const map::Ring& view_ring = view.view().ring(ring);
-  double t = 0.0;
-  for (; t < options.max_sim_s; t = sim_step.next_s) {
-    if (options.trace) {
-      const int e = view.ViewEdge(ring, sim.Truth().edge_index);
-      if (e != last_view_edge) {
-        last_view_edge = e;
-        const map::Edge& edge = view_ring.edges[e];
-        map::SensedEdge as_sensed;
-        as_sensed.code = map::CodeOf(edge);
-        as_sensed.metric_in = edge.metric_in;
-        result.true_trace += fmt::format("{}[{}] ", map::Describe(as_sensed), e);
-      }
-    }
-    sim_step.Due(t);
-    if (sonar.Due(t)) {
-      const sonar::GatedScan g = sonar::GateScan(sim.Sonar(), gate);
-      std::vector<locomotion::SonarRange> ranges(sonar::kRingSize);
-      last_scan = {};
-      for (int k = 0; k < sonar::kRingSize; ++k) {
-        const bool valid = g.state[k] == sonar::ReadingState::kValid;
-        ranges[k] = {g.range_in[k], valid, g.state[k] == sonar::ReadingState::kOutsideFootprint};
-        last_scan.ranges_in.push_back(g.range_in[k]);
-        last_scan.valid.push_back(valid);
-      }
-      behaviour.OnScan(ranges, t);
-      if (last_scan.valid[coaxial]) {
-        localizer.SetWallRange(last_scan.ranges_in[coaxial] + robot.sonar_ring.head_radius_in);
-        assembler.SetWallRange(last_scan.ranges_in[coaxial] + robot.sonar_ring.head_radius_in);
-      }
-    }
-    if (camera.Due(t)) {
-      const std::vector<std::uint8_t> frame = sim.RenderFrame();
-      ++result.frames;
-      const vision::ImageView image{sim.image_width_px(), sim.image_height_px(),
-                                    sim.image_width_px(), "mono8", frame.data(), frame.size()};
-      const landmark::FrameOutcome out = pipeline.Process(image, last_scan);
-      if (out.kind == landmark::FrameOutcome::Kind::kObservation) {
-        ++result.doors_observed;
-        const sensing::LandmarkObservation& o = out.observation;
-        const localizer::DoorSighting sighting{localizer::ToMapDoorClass(o.door_class), o.width_in, o.confidence,
-                                               odometer.distance_in() + out.center_offset_in};
-        localizer.AddSighting(sighting);
-        assembler.AddSighting(sighting);
-      }
-    }
-    if (encoders.Due(t)) {
-      odometer.Update(sim.left_travel_in(), sim.right_travel_in());
-      executive.OnOdometer(odometer.distance_in());
-      if (measuring) {
-        const virtual_robot::SimTruth truth = sim.Truth();
-        meter.Advance(odometer.distance_in(), odometer.pose().heading_rad,
-                      truth.optical_axis_on_wall ? view.ViewEdge(ring, truth.edge_index) : -1);
-        if (InchesToFeet(truth.distance_in) >= options.measure_ft) {
-          result.ended = fmt::format("measured over {:.0f} ft", options.measure_ft);
-          break;
-        }
-      } else if (localizer.Advance(odometer.distance_in(), odometer.pose().heading_rad)) {
-        const localizer::PoseEstimate& e = localizer.estimate();
-        if (options.trace) TraceBelief(t, localizer, view, sim, ring, result);
-        if (e.status == localizer::Status::kLocalized && !e.hypotheses.empty()) {
-          if (!was_localized) {
-            const Recovery r = judge(t);
-            if (!result.first) {
-              result.first = r;
-              if (options.kidnap_after_s < 0.0) {
-                result.ended = "localized";
-                break;
-              }
-              // Keep travelling: a goal half the ring ahead.
-              const int n = map.ring(ring).EdgeCount();
-              const int ahead = r.forward ? r.edge + n / 2 : r.edge - n / 2 + n;
-              executive.OnGoal("far", fmt::format("{}/{}", r.ring_id, ahead % n));
-              kidnap_at_s = t + options.kidnap_after_s;
-            } else if (result.kidnapped) {
-              result.second = r;
-              result.ended = "localized again after the kidnap";
-              break;
-            }
-          }
-          was_localized = true;
-        } else if (e.status == localizer::Status::kLost) {
-          if (result.kidnapped && !result.lost_detected) {
-            result.lost_detected = true;
-            result.lost_after_ft = InchesToFeet(sim.Truth().distance_in - epoch_in);
-          }
-          executive.OnLost();
-          was_localized = false;
-        } else {
-          was_localized = false;
-        }
-      }
-      const executive::MotionRequest request = executive.mission().Motion();
-      if (request.move) {
-        if (!moving) behaviour.Reset();
-        moving = true;
-        const locomotion::BehaviourOutput out =
-            behaviour.Step(request.linear_speed_ftps, odometer.pose().heading_rad,
-                           odometer.distance_in(), t, encoders.period_s);
-        wheels = locomotion::ToWheelSpeeds(out.linear_ftps, out.angular_radps,
-                                           setup.locomotion.limits);
-        if (options.trace && out.state != last_state && result.behaviour_log.size() < 200) {
-          result.behaviour_log.push_back(fmt::format("{:7.1f} s  {}", t, out.reason));
-        }
-        last_state = out.state;
-        executive.mission().OnMotionState(out.in_envelope, t);
-      } else {
-        moving = false;
-        wheels = {};
-      }
-    }
-    if (kidnap_at_s >= 0.0 && t >= kidnap_at_s && !result.kidnapped) {
-      result.kidnapped = true;
-      sim.Teleport(sim.RingPosition() + options.kidnap_jump_in);
-      epoch_in = sim.Truth().distance_in;
-      epoch_s = t;
-    }
-    sim.Step(sim_step.period_s, wheels.left_ftps, wheels.right_ftps);
-    const virtual_robot::SimTruth truth = sim.Truth();
-    if (options.record_path) {
-      const std::pair<double, double> at{truth.X_WR.x_in, truth.X_WR.y_in};
-      if (result.path.empty() || std::hypot(at.first - result.path.back().first,
-                                            at.second - result.path.back().second) > 3.0) {
-        result.path.push_back(at);
-      }
-    }
-    if (truth.corner_distance_in > kEnvelopeCornerDistanceIn &&
-        truth.distance_in > kEnvelopeSettleDistanceIn) {
-      result.max_offset_in = std::max(result.max_offset_in, std::abs(truth.lateral_offset_in));
-      result.max_heading_deg =
-          std::max(result.max_heading_deg, std::abs(RadToDeg(truth.heading_error_rad)));
-    }
-  }
-  if (result.ended.empty()) {
-    result.ended = fmt::format("no pose after {:.0f} s simulated", options.max_sim_s);
-  }
-  result.sim_s = t;
-  result.collisions = sim.Truth().collisions;
-  const std::vector<map::SensedEdge>& sensed =
-      measuring ? assembler.sequence() : localizer.sensed_sequence();
-  result.sensed_trace = map::Describe(sensed);
-  if (measuring) result.errors = meter.Finish();
   return result;
 }
 

@@ -1,11 +1,11 @@
 #pragma once
 
-// The whole Where-am-I run without middleware: the virtual robot's world, the sonar gate,
-// locomotion's hallway behaviour and odometry, the landmark pipeline, the localizer and the
-// mission executive, each the same logic class its process wraps, read from the same
-// configuration files, stepped in simulated time at the processes' rates. Deterministic for
-// a seed, and as fast as the renderer allows: it measures what the live stack does without
-// the scheduling of seven processes on one machine.
+// The whole Where-am-I run without middleware: the virtual robot's world and the sonar,
+// camera, locomotion, landmark, localizer and executive components, the very classes the
+// processes run, read from the same configuration files and wired by topic on the in-process
+// executor's simulated clock (in_process_stack.h). Deterministic for a seed, and as fast as
+// the renderer allows: it measures what the live stack does without the scheduling of seven
+// processes on one machine.
 
 #include <cstdint>
 #include <memory>
@@ -112,6 +112,8 @@ struct RunResult {
   // With RunOptions::measure_ft: the assembled edges against the truth, from 20 ft on.
   EdgeErrorCounts errors;
   bool failed = false;              // the run could not be run; `ended` says why
+  // Samples a component dropped, "component: topic: reason x count" (none on a sound run).
+  std::vector<std::string> drops;
 
   Ending ending() const;
 };
