@@ -7,6 +7,7 @@
 #include <iostream>
 #include <optional>
 
+#include "common/config_paths.h"
 #include "common/input_error.h"
 #include "common/tool_main.h"
 #include "launch/launcher.h"
@@ -17,7 +18,7 @@ int main(int argc, char** argv) {
   int domain = -1;
   stickrep::launch::LaunchOptions options;
   options.bin_dir = std::filesystem::canonical("/proc/self/exe").parent_path().string();
-  options.config_dir = std::string(STICKREP_SOURCE_DIR) + "/configs";
+  options.config_dir = stickrep::DefaultConfigDir();
   app.add_option("graph", graph_file, "process graph, e.g. deploy/virtual_robot.launch.yaml")
       ->required();
   app.add_option("--domain", domain, "DDS domain id passed to every process")

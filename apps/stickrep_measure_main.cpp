@@ -12,13 +12,14 @@
 #include "common/tool_main.h"
 #include "measure/error_measurement.h"
 #include "sensing/robot_config.h"
+#include "common/config_paths.h"
 #include "stickrep/map_io.h"
 
 int main(int argc, char** argv) {
   using namespace stickrep;
   CLI::App app{"Measure the landmark pipeline on rendered frames (Table 6.10, SPEC 5)"};
   measure::MeasureConfig config;
-  const std::string maps_dir = std::string(STICKREP_SOURCE_DIR) + "/maps/";
+  const std::string maps_dir = DataDir() + "/maps/";
   std::vector<std::string> map_paths;
   for (const char* name : {"engineering_building_3f", "wells_hall_7f", "wells_hall_7f_modified",
                            "regular_polygon_46", "storefront"}) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine for StickRep and builds it: installs the Debian packages that
-# are missing, configures, and builds everything into build/ (executables in build/bin).
-# Safe to run again: it installs nothing that is present and rebuilds incrementally.
+# are missing, configures, and builds into build/ (executables in build/bin): everything, or with
+# `main` only what the main job runs. Safe to run again: it installs nothing that is present
+# and rebuilds incrementally.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -30,4 +31,12 @@ fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo > build.configure.log 2>&1 ||
   { cat build.configure.log; exit 1; }
 rm -f build.configure.log
-cmake --build build -j2
+# `main`: only what the main job runs (the processes and stickrep-launch), for a first
+# result sooner; `all` (the default): everything, tests and benchmarks included.
+case "${1:-all}" in
+  main) targets=(--target stickrep-launch stickrep-virtual-robot stickrep-sonar stickrep-camera
+                 stickrep-locomotion stickrep-landmark stickrep-localizer stickrep-executive) ;;
+  all) targets=() ;;
+  *) echo "usage: bash deploy/setup.sh [main|all]" >&2; exit 2 ;;
+esac
+cmake --build build -j2 "${targets[@]}"

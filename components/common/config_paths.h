@@ -8,7 +8,12 @@ namespace stickrep {
 // or empty).
 std::string ResolvePath(const std::string& path, const std::string& relative_to_file);
 
-// The configs/ directory: $STICKREP_CONFIG_DIR if set, else the source tree's configs/.
+// Where StickRep's data (configs/, maps/, deploy/, idl/) is: $STICKREP_DATA_DIR if set;
+// else, for a program installed under PREFIX/bin, PREFIX/share/stickrep; else (a program
+// run from the build tree) the source tree.
+std::string DataDir();
+
+// The configs/ directory: $STICKREP_CONFIG_DIR if set, else DataDir()/configs.
 std::string DefaultConfigDir();
 
 }  // namespace stickrep

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/config_paths.h"
 #include "common/input_error.h"
 #include "plot/bar_chart.h"
 #include "stickrep/map_io.h"
@@ -329,7 +330,7 @@ void PrintSummary(std::ostream& out, const std::vector<DomainResult>& results) {
 }
 
 int RunTool(const ToolOptions& opt, std::ostream& out, std::ostream& err) {
-  const std::string root = STICKREP_SOURCE_DIR;
+  const std::string root = DataDir();
   std::string current_file;
   try {
     if (opt.trials < 1 || opt.runs < 1) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "common/config_paths.h"
 #include "common/units.h"
 
 namespace stickrep::sensing {
@@ -86,7 +87,7 @@ RobotConfig LoadRobotConfigFile(const std::string& path) {
 }
 
 std::string DefaultRobotConfigPath() {
-  return std::string(STICKREP_SOURCE_DIR) + "/configs/robot.yaml";
+  return DefaultConfigDir() + "/robot.yaml";
 }
 
 }  // namespace stickrep::sensing
