@@ -7,9 +7,9 @@
 namespace stickrep::convert {
 
 // The IDL enum is the door classes after DOOR_REJECTED, in sensing::DoorClass's order.
-static_assert(static_cast<int>(msgs::DOOR_30) == 1 + static_cast<int>(sensing::DoorClass::kDoor30));
+static_assert(static_cast<int>(msgs::DOOR_30) == 1 + static_cast<int>(sensing::DoorClass::k30));
 static_assert(static_cast<int>(msgs::DOOR_36_36) ==
-              1 + static_cast<int>(sensing::DoorClass::kDouble36));
+              1 + static_cast<int>(sensing::DoorClass::k36_36));
 
 Checked<message::LandmarkObservation> FromIdl(const msgs::LandmarkObservation& m) {
   const long long code = static_cast<long long>(m.door_class());

@@ -93,7 +93,7 @@ void ExpectJambsClassified(const Frame& frame, const FrameOutcome& out, DoorClas
 TEST(LandmarkPipelineTest, Classifies36InDoorAtSixFeetBy36NotByItsCasing) {
   const Frame frame = Render(DoorScene(36), Facing(36, 72.0, 4.3));
   const FrameOutcome out = Process(frame);
-  ExpectJambsClassified(frame, out, DoorClass::kDoor36);
+  ExpectJambsClassified(frame, out, DoorClass::k36);
   EXPECT_EQ(out.casings, 1);
 }
 
@@ -101,28 +101,28 @@ TEST(LandmarkPipelineTest, Classifies30InDoorAtEightFeetBy30WhereItsCasingReads3
   // At 6 ft the 30 in door reads 31.4 in, on the 30|32 boundary: the width bias of the
   // pipeline (docs/measured_error_model.md), not the casing.
   const Frame frame = Render(DoorScene(30), Facing(30, 96.0, -3.0));
-  ExpectJambsClassified(frame, Process(frame), DoorClass::kDoor30);
+  ExpectJambsClassified(frame, Process(frame), DoorClass::k30);
   // Without the rule the most confident pair is the casing: 30 + 2 x 3 in, class 36.
   CasingRule off;
   off.enabled = false;
   const FrameOutcome without = Process(frame, off);
   ASSERT_EQ(without.kind, FrameOutcome::Kind::kObservation) << without.reason;
-  EXPECT_EQ(without.observation.door_class, DoorClass::kDoor36);
+  EXPECT_EQ(without.observation.door_class, DoorClass::k36);
 }
 
 TEST(LandmarkPipelineTest, Classifies32InDoorAtEightFeetBy32WhereItsCasingReads40) {
   const Frame frame = Render(DoorScene(32), Facing(32, 96.0, 0.0));
-  ExpectJambsClassified(frame, Process(frame), DoorClass::kDoor32);
+  ExpectJambsClassified(frame, Process(frame), DoorClass::k32);
   CasingRule off;
   off.enabled = false;
   const FrameOutcome without = Process(frame, off);
   ASSERT_EQ(without.kind, FrameOutcome::Kind::kObservation) << without.reason;
-  EXPECT_EQ(without.observation.door_class, DoorClass::kDoor40);
+  EXPECT_EQ(without.observation.door_class, DoorClass::k40);
 }
 
 TEST(LandmarkPipelineTest, Classifies36InDoorAtTwelveFeet) {
   const Frame frame = Render(DoorScene(36), Facing(36, 144.0, -20.0));
-  ExpectJambsClassified(frame, Process(frame), DoorClass::kDoor36);
+  ExpectJambsClassified(frame, Process(frame), DoorClass::k36);
 }
 
 TEST(LandmarkPipelineTest, BlankWallGivesNoDoor) {
@@ -139,28 +139,28 @@ TEST(LandmarkPipelineTest, BlankWallGivesNoDoor) {
 TEST(LandmarkPipelineTest, ToleratesTenDegreesOfRollAtTwelveFeet) {
   // §4.1.1: "misalignment angle as great as 10 degrees from vertical at a distance of 12 feet".
   const Frame frame = Render(DoorScene(36), Facing(36, 144.0, 10.0), 10.0);
-  ExpectJambsClassified(frame, Process(frame), DoorClass::kDoor36);
+  ExpectJambsClassified(frame, Process(frame), DoorClass::k36);
 }
 
 TEST(LandmarkPipelineTest, ToleratesTenDegreesOfRollAtSixFeet) {
   const Frame frame = Render(DoorScene(36), Facing(36, 72.0, -4.0), -10.0);
-  ExpectJambsClassified(frame, Process(frame), DoorClass::kDoor36);
+  ExpectJambsClassified(frame, Process(frame), DoorClass::k36);
 }
 
 TEST(LandmarkPipelineTest, ClassifiesDoorOpenIntoTheRoom) {
   const Frame frame = Render(DoorScene(36, DoorState::kOpenInward, 90.0), Facing(36, 72.0, 3.0));
-  ExpectJambsClassified(frame, Process(frame), DoorClass::kDoor36);
+  ExpectJambsClassified(frame, Process(frame), DoorClass::k36);
 }
 
 TEST(LandmarkPipelineTest, ClassifiesDoorOpenIntoTheHallway) {
   const Frame frame = Render(DoorScene(36, DoorState::kOpenOutward, 20.0), Facing(36, 96.0, 0.0));
   const FrameOutcome out = Process(frame);
-  ExpectJambsClassified(frame, out, DoorClass::kDoor36);
+  ExpectJambsClassified(frame, out, DoorClass::k36);
 }
 
 TEST(LandmarkPipelineTest, ClassifiesDoubleDoorByItsOpeningNotItsHalves) {
   const Frame frame = Render(DoorScene(72), Facing(72, 144.0, 0.0));
-  ExpectJambsClassified(frame, Process(frame), DoorClass::kDouble36);
+  ExpectJambsClassified(frame, Process(frame), DoorClass::k36_36);
 }
 
 TEST(LandmarkPipelineTest, FrameWithoutCoaxialRangeIsDropped) {

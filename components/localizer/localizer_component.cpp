@@ -48,7 +48,7 @@ std::vector<component::Timer> LocalizerComponent::Timers() {
 }
 
 void LocalizerComponent::OnLandmark(const message::LandmarkObservation& o) {
-  localizer_->AddSighting({ToMapDoorClass(o.door_class), o.width_in, o.confidence,
+  localizer_->AddSighting({o.door_class, o.width_in, o.confidence,
                            o.odometry_distance_in + o.center_offset_in});
   landmarks_used_++;
 }

@@ -12,8 +12,6 @@
 
 namespace stickrep::localizer {
 
-map::DoorClass ToMapDoorClass(sensing::DoorClass c);
-
 // The class the detector reports for a door opening of `width_in`; nullopt when it rejects
 // the width (no decision region holds it: 44-56 in, over 76 in, under 28.5 in).
 std::optional<map::DoorClass> SensedDoorClass(double width_in);

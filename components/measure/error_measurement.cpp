@@ -12,6 +12,7 @@
 #include "common/seeds.h"
 #include "common/worker_pool.h"
 #include "common/units.h"
+#include "stickrep/map.h"
 #include "world/camera_renderer.h"
 #include "world/map_world.h"
 #include "world/robot_models.h"
@@ -28,25 +29,17 @@ constexpr int kMaxPlacementTries = 50;
 // A sensed jamb within this of the true one found the right edge (docs/vision.md: 2 px).
 constexpr double kJambTolerancePx = 3.0;
 
-const char* const kClassNames[kClassCount] = {"30", "32", "36", "40", "30/30", "36/36"};
+static_assert(kClassCount == map::kDoorClassCount);
+
+// The door classes by index (map::DoorClass order): their names, and the class of a nominal
+// width.
+const char* ClassName(int index) { return map::DoorClassName(static_cast<map::DoorClass>(index)); }
 
 int ClassIndexOfWidth(int width_in) {
-  switch (width_in) {
-    case 30:
-      return 0;
-    case 32:
-      return 1;
-    case 36:
-      return 2;
-    case 40:
-      return 3;
-    case 60:
-      return 4;
-    case 72:
-      return 5;
-    default:
-      return -1;
+  for (int i = 0; i < map::kDoorClassCount; ++i) {
+    if (map::DoorClassWidthIn(static_cast<map::DoorClass>(i)) == width_in) return i;
   }
+  return -1;
 }
 
 double Pct(long num, long den) { return den > 0 ? 100.0 * num / den : 0.0; }
@@ -493,12 +486,12 @@ std::string FormatReport(const Measurement& m) {
 
   s += "\nPositives by true class: sensed as (rows: true class; TP on the diagonal; - = missed)\n";
   s += "  true    frames";
-  for (const char* n : kClassNames) s += Fmt("%7s", n);
+  for (int k = 0; k < kClassCount; ++k) s += Fmt("%7s", ClassName(k));
   s += "      -\n";
   for (int t = 0; t < kClassCount; ++t) {
     if (m.positives_by_class[t] == 0) continue;
     long missed = m.positives_by_class[t] - m.true_positive_by_class[t];
-    std::string row = Fmt("  %-6s %7ld", kClassNames[t], m.positives_by_class[t]);
+    std::string row = Fmt("  %-6s %7ld", ClassName(t), m.positives_by_class[t]);
     for (int k = 0; k < kClassCount; ++k) {
       const long n = k == t ? m.true_positive_by_class[t] : m.missized_to[t][k];
       missed -= k == t ? 0 : n;
@@ -515,7 +508,7 @@ std::string FormatReport(const Measurement& m) {
       a.missized - m.missized_right_jambs - m.missized_off_door, m.missized_off_door);
   s += "False positives by sensed class:";
   for (int k = 0; k < kClassCount; ++k) {
-    s += Fmt(" %s %ld", kClassNames[k], m.false_door_classes[k]);
+    s += Fmt(" %s %ld", ClassName(k), m.false_door_classes[k]);
   }
   s += Line("\n  (%ld of %ld false positives on frames showing part of a door)",
             m.fp_on_partial_doors, a.fp);
@@ -541,7 +534,7 @@ std::string FormatErrorModelYaml(const Measurement& m) {
     bool first = true;
     for (int k = 0; k < kClassCount; ++k) {
       if (counts[k] == 0) continue;
-      s += (first ? "\"" : ", \"") + std::string(kClassNames[k]) +
+      s += (first ? "\"" : ", \"") + std::string(ClassName(k)) +
            "\": " + fixed(static_cast<double>(counts[k]) / total);
       first = false;
     }
@@ -553,7 +546,7 @@ std::string FormatErrorModelYaml(const Measurement& m) {
     long row = 0;
     for (long n : m.missized_to[t]) row += n;
     if (row == 0) continue;
-    missized_to += (first ? "\"" : ", \"") + std::string(kClassNames[t]) +
+    missized_to += (first ? "\"" : ", \"") + std::string(ClassName(t)) +
                    "\": " + distribution(m.missized_to[t]);
     first = false;
   }

@@ -101,7 +101,7 @@ struct Odometry {
 
 struct LandmarkObservation {
   Header header;
-  sensing::DoorClass door_class = sensing::DoorClass::kDoor30;
+  sensing::DoorClass door_class = sensing::DoorClass::k30;
   double width_in = 0.0;
   double confidence = 0.0;
   double left_jamb_px = 0.0, right_jamb_px = 0.0;

@@ -8,48 +8,12 @@
 
 namespace stickrep::sensing {
 
-const char* ToString(DoorClass c) {
-  switch (c) {
-    case DoorClass::kDoor30:
-      return "30";
-    case DoorClass::kDoor32:
-      return "32";
-    case DoorClass::kDoor36:
-      return "36";
-    case DoorClass::kDoor40:
-      return "40";
-    case DoorClass::kDouble30:
-      return "30/30";
-    case DoorClass::kDouble36:
-      return "36/36";
-  }
-  return "?";
-}
-
-double NominalWidthIn(DoorClass c) {
-  switch (c) {
-    case DoorClass::kDoor30:
-      return 30;
-    case DoorClass::kDoor32:
-      return 32;
-    case DoorClass::kDoor36:
-      return 36;
-    case DoorClass::kDoor40:
-      return 40;
-    case DoorClass::kDouble30:
-      return 60;
-    case DoorClass::kDouble36:
-      return 72;
-  }
-  return 0;
-}
-
 std::vector<ClassBoundary> Table41Boundaries() {
-  return {{DoorClass::kDoor32, 29.1, 33.5},
-          {DoorClass::kDoor36, 33.5, 38.8},
-          {DoorClass::kDoor40, 38.8, 42.7},
-          {DoorClass::kDouble30, 56.4, 64.0},
-          {DoorClass::kDouble36, 67.9, 76.3}};
+  return {{DoorClass::k32, 29.1, 33.5},
+          {DoorClass::k36, 33.5, 38.8},
+          {DoorClass::k40, 38.8, 42.7},
+          {DoorClass::k30_30, 56.4, 64.0},
+          {DoorClass::k36_36, 67.9, 76.3}};
 }
 
 std::vector<ClassBoundary> DefaultBoundaries() {
@@ -57,9 +21,9 @@ std::vector<ClassBoundary> DefaultBoundaries() {
   // printed by `stickrep-sensing report`; a test checks these stay in step with it).
   constexpr double kDoor30Low = 28.5;
   constexpr double kDoor30High = 31.4;
-  std::vector<ClassBoundary> out = {{DoorClass::kDoor30, kDoor30Low, kDoor30High}};
+  std::vector<ClassBoundary> out = {{DoorClass::k30, kDoor30Low, kDoor30High}};
   for (ClassBoundary b : Table41Boundaries()) {
-    if (b.door_class == DoorClass::kDoor32) b.low_in = kDoor30High;
+    if (b.door_class == DoorClass::k32) b.low_in = kDoor30High;
     out.push_back(b);
   }
   return out;
@@ -107,12 +71,12 @@ double Bisect(F f, double a, double b) {
 }  // namespace
 
 std::vector<ClassBoundary> DeriveBayesBoundaries(const BayesModel& m) {
-  const std::array<WeightedClass, 6> classes = {{{DoorClass::kDoor30, m.prior_door30},
-                                                 {DoorClass::kDoor32, m.prior_door32},
-                                                 {DoorClass::kDoor36, m.prior_door36},
-                                                 {DoorClass::kDoor40, m.prior_door40},
-                                                 {DoorClass::kDouble30, m.prior_double30},
-                                                 {DoorClass::kDouble36, m.prior_double36}}};
+  const std::array<WeightedClass, 6> classes = {{{DoorClass::k30, m.prior_door30},
+                                                 {DoorClass::k32, m.prior_door32},
+                                                 {DoorClass::k36, m.prior_door36},
+                                                 {DoorClass::k40, m.prior_door40},
+                                                 {DoorClass::k30_30, m.prior_double30},
+                                                 {DoorClass::k36_36, m.prior_double36}}};
   double door_total = 0;
   for (const auto& k : classes) door_total += k.weight;
   // Clutter weight on the same scale as the door counts: fraction/(1-fraction) of them,
@@ -165,7 +129,7 @@ double FitSigmaToTable41(BayesModel model) {
     double c32_36 = 0.0, c36_40 = 0.0;
     bool have_a = false, have_b = false;
     for (const ClassBoundary& b : DeriveBayesBoundaries(model)) {
-      if (b.door_class == DoorClass::kDoor36) {
+      if (b.door_class == DoorClass::k36) {
         c32_36 = b.low_in;
         c36_40 = b.high_in;
         have_a = have_b = true;

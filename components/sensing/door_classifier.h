@@ -4,12 +4,15 @@
 #include <string>
 #include <vector>
 
+#include "stickrep/map.h"
+
 namespace stickrep::sensing {
 
-// The legal door widths of the domain (§4.1.2, §6.1; SPEC §1).
-enum class DoorClass { kDoor30, kDoor32, kDoor36, kDoor40, kDouble30, kDouble36 };
-const char* ToString(DoorClass c);   // "30", "32", "36", "40", "30/30", "36/36"
-double NominalWidthIn(DoorClass c);  // 30, 32, 36, 40, 60, 72
+// The legal door widths of the domain (§4.1.2, §6.1; SPEC §1): the map's door classes, one
+// definition for the map, the sensors, the messages and the localizer.
+using DoorClass = map::DoorClass;
+inline const char* ToString(DoorClass c) { return map::DoorClassName(c); }  // "30" … "36/36"
+inline double NominalWidthIn(DoorClass c) { return map::DoorClassWidthIn(c); }  // 30 … 72
 
 // One decision region of the Bayes rule: widths in [low_in, high_in) are this class.
 struct ClassBoundary {

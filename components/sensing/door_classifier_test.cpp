@@ -14,12 +14,12 @@ using ::testing::Optional;
 
 TEST(DoorClassifierTest, Table41BoundariesClassifyAsPrinted) {
   const auto t = Table41Boundaries();
-  EXPECT_THAT(ClassifyWidth(t, 29.1), Optional(DoorClass::kDoor32));
-  EXPECT_THAT(ClassifyWidth(t, 33.49), Optional(DoorClass::kDoor32));
-  EXPECT_THAT(ClassifyWidth(t, 33.5), Optional(DoorClass::kDoor36));
-  EXPECT_THAT(ClassifyWidth(t, 42.6), Optional(DoorClass::kDoor40));
-  EXPECT_THAT(ClassifyWidth(t, 60.0), Optional(DoorClass::kDouble30));
-  EXPECT_THAT(ClassifyWidth(t, 76.2), Optional(DoorClass::kDouble36));
+  EXPECT_THAT(ClassifyWidth(t, 29.1), Optional(DoorClass::k32));
+  EXPECT_THAT(ClassifyWidth(t, 33.49), Optional(DoorClass::k32));
+  EXPECT_THAT(ClassifyWidth(t, 33.5), Optional(DoorClass::k36));
+  EXPECT_THAT(ClassifyWidth(t, 42.6), Optional(DoorClass::k40));
+  EXPECT_THAT(ClassifyWidth(t, 60.0), Optional(DoorClass::k30_30));
+  EXPECT_THAT(ClassifyWidth(t, 76.2), Optional(DoorClass::k36_36));
 }
 
 TEST(DoorClassifierTest, WidthsOutsideEveryClassAreRejected) {
@@ -32,15 +32,15 @@ TEST(DoorClassifierTest, WidthsOutsideEveryClassAreRejected) {
 
 TEST(DoorClassifierTest, DefaultBoundariesAddDoor30BelowDoor32) {
   const auto t = DefaultBoundaries();
-  EXPECT_THAT(ClassifyWidth(t, 30.0), Optional(DoorClass::kDoor30));
-  EXPECT_THAT(ClassifyWidth(t, 32.0), Optional(DoorClass::kDoor32));
-  EXPECT_THAT(ClassifyWidth(t, 36.0), Optional(DoorClass::kDoor36));
+  EXPECT_THAT(ClassifyWidth(t, 30.0), Optional(DoorClass::k30));
+  EXPECT_THAT(ClassifyWidth(t, 32.0), Optional(DoorClass::k32));
+  EXPECT_THAT(ClassifyWidth(t, 36.0), Optional(DoorClass::k36));
 }
 
 TEST(BayesBoundariesTest, DefaultDoor30RegionIsTheDerivedOne) {
   const auto derived = DeriveBayesBoundaries(BayesModel{});
   ASSERT_FALSE(derived.empty());
-  ASSERT_EQ(derived.front().door_class, DoorClass::kDoor30);
+  ASSERT_EQ(derived.front().door_class, DoorClass::k30);
   const auto in_use = DefaultBoundaries();
   EXPECT_THAT(in_use.front().low_in, DoubleNear(derived.front().low_in, 0.05));
   EXPECT_THAT(in_use.front().high_in, DoubleNear(derived.front().high_in, 0.05));
@@ -54,7 +54,7 @@ TEST(BayesBoundariesTest, EqualPriorsAndSpreadPutTheBoundaryNearTheMidpoint) {
   // 36|40 with equal priors: just below 38, because the 40 class is 11 % wider (hand
   // solution of the equal-density equation: 37.92 in).
   for (const ClassBoundary& r : b) {
-    if (r.door_class == DoorClass::kDoor36) {
+    if (r.door_class == DoorClass::k36) {
       EXPECT_THAT(r.high_in, DoubleNear(37.92, 0.03));
     }
   }
@@ -65,7 +65,7 @@ TEST(BayesBoundariesTest, FittedSpreadReproducesTable41InteriorBoundaries) {
   m.sigma_rel = FitSigmaToTable41(m);
   m.prior_door30 = 0;  // as Table 4.1
   for (const ClassBoundary& r : DeriveBayesBoundaries(m)) {
-    if (r.door_class == DoorClass::kDoor36) {
+    if (r.door_class == DoorClass::k36) {
       EXPECT_THAT(r.low_in, DoubleNear(33.5, 0.5));
       EXPECT_THAT(r.high_in, DoubleNear(38.8, 0.5));
     }

@@ -43,7 +43,7 @@ struct LandmarkEstimatorConfig {
 
 // What the landmark stage reports for one frame.
 struct LandmarkObservation {
-  DoorClass door_class = DoorClass::kDoor36;
+  DoorClass door_class = DoorClass::k36;
   double width_in = 0.0;
   double confidence = 0.0;
   Footprints footprints;

@@ -41,7 +41,7 @@ class LandmarkEstimatorTest : public ::testing::Test {
 TEST_F(LandmarkEstimatorTest, ClosedThirtySixInchDoorSquareOnIsClassThirtySix) {
   const auto obs = est_.Estimate(WallScan(est_, 72.0, 0.0), {Door(est_, 36.0, 90.0, 1.0)});
   ASSERT_TRUE(obs.ok()) << obs.message();
-  EXPECT_EQ(obs->door_class, DoorClass::kDoor36);
+  EXPECT_EQ(obs->door_class, DoorClass::k36);
   // The printed Short Side formula reads 2.0 % wide square-on (Table 5.2, L -> RL).
   EXPECT_THAT(obs->width_in, DoubleNear(36.0 * 1.0204, 0.01));
   EXPECT_THAT(obs->range_in, DoubleNear(72.0, 1e-9));
@@ -76,7 +76,7 @@ TEST_F(LandmarkEstimatorTest, CandidatesAreTriedInOrderOfConfidence) {
                                  {Door(est_, 36.0, 90.0, 0.4), Door(est_, 40.0, 90.0, 0.9)});
   ASSERT_TRUE(obs.ok());
   EXPECT_EQ(obs->candidate_index, 1);
-  EXPECT_EQ(obs->door_class, DoorClass::kDoor40);
+  EXPECT_EQ(obs->door_class, DoorClass::k40);
 }
 
 TEST_F(LandmarkEstimatorTest, CandidateOutsideEveryClassFallsThroughToTheNext) {
@@ -84,7 +84,7 @@ TEST_F(LandmarkEstimatorTest, CandidateOutsideEveryClassFallsThroughToTheNext) {
                                  {Door(est_, 20.0, 90.0, 0.9), Door(est_, 30.0, 90.0, 0.5)});
   ASSERT_TRUE(obs.ok());
   EXPECT_EQ(obs->candidate_index, 1);
-  EXPECT_EQ(obs->door_class, DoorClass::kDoor30);
+  EXPECT_EQ(obs->door_class, DoorClass::k30);
 }
 
 TEST_F(LandmarkEstimatorTest, AllCandidatesOutsideEveryClassAreRejected) {
@@ -109,7 +109,7 @@ TEST_F(LandmarkEstimatorTest, OpenDoorDepthIsInterpolatedFromTheFlanks) {
   const auto obs = est_.Estimate(scan, {Door(est_, 36.0, 90.0, 1.0)});
   ASSERT_TRUE(obs.ok()) << obs.message();
   EXPECT_TRUE(obs->open_door);
-  EXPECT_EQ(obs->door_class, DoorClass::kDoor36);
+  EXPECT_EQ(obs->door_class, DoorClass::k36);
   EXPECT_THAT(obs->range_in, DoubleNear(72.0, 0.05));
 }
 

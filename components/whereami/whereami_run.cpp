@@ -144,7 +144,7 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
       "perception/landmark", [this](const message::LandmarkObservation& o) {
         ++result_.doors_observed;
         if (measuring_) {
-          assembler_.AddSighting({localizer::ToMapDoorClass(o.door_class), o.width_in,
+          assembler_.AddSighting({o.door_class, o.width_in,
                                   o.confidence, o.odometry_distance_in + o.center_offset_in});
         }
       });
