@@ -178,6 +178,10 @@ TEST(RecordingTest, ReplayPublishesTheRecordedPayloadsInOrder) {
   o.file = file;
   o.rate = 2.0;
   ReplaySession session(replaying, replay_ex, o);
+  // The replayer waits until its writer has matched a reader; best-effort samples reach the
+  // reader only once the reader has matched the writer too, which under load comes later
+  // (one CI run lost the first 14 of 30).
+  ASSERT_TRUE(reader.WaitForMatched(1, 10.0));
   session.replayer().Start();
   ASSERT_TRUE(runtime::WaitFor(
       [&] {
