@@ -117,6 +117,21 @@ class RoutePlanner {
     bool is_join;
   };
   int Vertex(int ring, int node) const { return node_offset_[ring] + node; }
+  struct SearchEnds;  // where one query's search starts and ends
+  struct SearchTree;  // the shortest-path tree it grows
+
+  // ParseGoal() by the form of the name.
+  GoalResult ParsePatternGoal(std::string_view name, std::string_view pattern) const;
+  GoalResult ParseRingGoal(std::string_view name) const;
+  // Plan() in steps: check the query, search the graph, walk the path back into legs.
+  bool PoseOnMap(const MapPose& pose) const;
+  bool GoalOnMap(const Goal& goal) const;
+  SearchEnds Ends(const MapPose& pose, const Goal& goal, double start_metric, double pos) const;
+  SearchTree Search(const SearchEnds& ends) const;
+  Route RouteAlong(const MapPose& pose, const Goal& goal, const SearchEnds& ends,
+                   const SearchTree& tree) const;
+  // Direction of a step along one ring, from node u to node w (vertices).
+  int StepDir(int u, int w) const;
 
   const map::Map& map_;
   std::vector<int> node_offset_;

@@ -197,28 +197,7 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
           // ... or it began in an earlier wall or door and ran over missed doors into this
           // wall (one sensed wall over a flat stretch). Direction-dependent.
           for (const int dir : {+1, -1}) {
-            double chain = len, p = 1.0;
-            int cur = g;
-            double extra = 0.0;
-            for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
-              const int d = index_.Step(cur, -dir);
-              if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
-              const double a_d = dir > 0 ? index_.angle_end(d) : index_.angle_start(d);
-              if (!Coplanar(a_d)) break;
-              p *= cf.missed;
-              chain += index_.metric(d);
-              // Started inside the missed door itself.
-              if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
-              const int w = index_.Step(d, -dir);
-              if (w < 0 || index_.code(w) != map::kWallCode) break;
-              const double a_w = dir > 0 ? index_.angle_end(w) : index_.angle_start(w);
-              if (!Coplanar(a_w)) break;
-              p *= 1.0 - cf.false_door;
-              chain += index_.metric(w);
-              if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
-              cur = w;
-            }
-            chained[dir > 0 ? 0 : 1] = extra;
+            chained[dir > 0 ? 0 : 1] = PriorOverMissedDoors(g, dir, sigma, e);
           }
         }
       } else {
@@ -242,13 +221,36 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
   }
 }
 
-void BayesLocalizer::Next(const map::SensedEdge& e) {
+double BayesLocalizer::PriorOverMissedDoors(int g, int dir, double sigma,
+                                            const map::SensedEdge& e) const {
   const Confusion& cf = model_.confusion;
-  const double eps = model_.settings.outlier;
+  const double len = index_.metric(g);
+  double chain = len, p = 1.0;
+  int cur = g;
+  double extra = 0.0;
+  for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
+    const int d = index_.Step(cur, -dir);
+    if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
+    const double a_d = dir > 0 ? index_.angle_end(d) : index_.angle_start(d);
+    if (!Coplanar(a_d)) break;
+    p *= cf.missed;
+    chain += index_.metric(d);
+    // Started inside the missed door itself.
+    if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
+    const int w = index_.Step(d, -dir);
+    if (w < 0 || index_.code(w) != map::kWallCode) break;
+    const double a_w = dir > 0 ? index_.angle_end(w) : index_.angle_start(w);
+    if (!Coplanar(a_w)) break;
+    p *= 1.0 - cf.false_door;
+    chain += index_.metric(w);
+    if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
+    cur = w;
+  }
+  return extra;
+}
+
+void BayesLocalizer::Next(const map::SensedEdge& e) {
   const bool door = map::IsDoorCode(e.code);
-  const bool wall = e.code == map::kWallCode;
-  const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
-  const double pf = cf.false_door;
   std::fill(nn_.begin(), nn_.end(), 0.0);
   std::fill(ni1_.begin(), ni1_.end(), 0.0);
   std::fill(ni2_.begin(), ni2_.end(), 0.0);
@@ -263,127 +265,11 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
     const int g = s / 2;
     const int dir = (s & 1) ? -1 : +1;
     const double pn = n_[s];
-    if (pn > 0.0) {
-      const int n1 = index_.Step(g, dir);
-      if (n1 >= 0 && index_.open_end(n1)) {
-        leaving += pn;
-      } else if (n1 >= 0) {
-        const int s1 = State(n1, dir);
-        const map::SymbolCode code1 = index_.code(n1);
-        const double angle = AngleFactor(n1, dir, e);
-        nn_[s1] += pn * eps * unit;  // an edge the model does not explain
-        if (wall && code1 == map::kWallCode) {
-          const double len1 = index_.metric(n1);
-          nn_[s1] += pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1);
-          const int n2 = index_.Step(n1, dir);
-          if (n2 >= 0 && index_.open_end(n2)) {
-            // The wall before an open end, run on out through it to wherever the next edge
-            // was seen: the robot is outside from the next edge on.
-            const double reach = model_.settings.open_end_reach_in;
-            const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len1));
-            if (e.metric_in >= len1 - 2.0 * sigma && e.metric_in <= len1 + reach) {
-              outside_ += pn * angle * (1.0 - pf) / (reach + 2.0 * sigma);
-            }
-          }
-          if (e.metric_in <= len1) {
-            // W1 of a wall holding a false door: the ribbon is anywhere in the wall.
-            const double add = pn * angle * pf / len1;
-            if (add > ni1_[s1]) {
-              nc1_[s1] = e.metric_in;
-              nlb1_[s1] = 0;
-            }
-            ni1_[s1] += add;
-          }
-          // One sensed wall over missed doors on a flat wall: wall, door, wall, ...
-          double total = len1, p = (1.0 - pf);
-          int cur = n1;
-          for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
-            const int d = index_.Step(cur, dir);
-            if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
-            const int w = index_.Step(d, dir);
-            if (w < 0 || index_.code(w) != map::kWallCode) break;
-            const double a_in = dir > 0 ? index_.angle_start(d) : index_.angle_end(d);
-            const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
-            if (!Coplanar(a_in) || !Coplanar(a_out)) break;
-            const double before_w = total + index_.metric(d);
-            const double len_w = index_.metric(w);
-            if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
-              // ... ending in the first part of a wall that holds a false door.
-              const int sw = State(w, dir);
-              const double add = pn * angle * p * cf.missed * pf / len_w;
-              if (add > ni1_[sw]) {
-                nc1_[sw] = e.metric_in - before_w;
-                nlb1_[sw] = 0;
-              }
-              ni1_[sw] += add;
-            }
-            total = before_w + len_w;
-            p *= cf.missed * (1.0 - pf);
-            nn_[State(w, dir)] += pn * angle * p * WallDensity(e.metric_in, total);
-            cur = w;
-          }
-        } else if (wall && map::IsDoorCode(code1)) {
-          // A missed door seen as wall surface (at a corner), maybe with the wall after it.
-          const double d = index_.metric(n1);
-          nn_[s1] += pn * angle * cf.missed * WallDensity(e.metric_in, d);
-          const int w = index_.Step(n1, dir);
-          if (w >= 0 && index_.code(w) == map::kWallCode) {
-            const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
-            if (Coplanar(a_out)) {
-              nn_[State(w, dir)] += pn * angle * cf.missed * (1.0 - pf) *
-                                    WallDensity(e.metric_in, d + index_.metric(w));
-            }
-          }
-        } else if (door && map::IsDoorCode(code1)) {
-          const int k = code1 - 1, c = e.code - 1;
-          const double pc = k == c ? cf.correct : cf.missized * cf.missized_to[k][c];
-          nn_[s1] += pn * angle * pc;
-        } else if (!door && !wall && code1 == e.code) {
-          nn_[s1] += pn * angle * WallDensity(e.metric_in, index_.metric(n1));
-        }
-      }
-    }
+    if (pn > 0.0) NextFromEnd(g, dir, pn, e, &leaving);
     const double p1 = i1_[s];
-    if (p1 > 0.0) {
-      nn_[s] += p1 * eps * unit;
-      if (door) {
-        // The false door that ended W1.
-        const double w = e.metric_in > 0.0 ? e.metric_in : ClassWidth(e.code);
-        const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
-        ni2_[s] += p1 * angle * cf.false_class[e.code - 1];
-        nc2_[s] = c1_[s] + w;
-        nc1_[s] = c1_[s];  // I1 and I2 of one wall never hold mass at the same step
-        nlb2_[s] = lb1_[s];
-      }
-    }
+    if (p1 > 0.0) NextFromFirstPart(s, p1, e);
     const double p2 = i2_[s];
-    if (p2 > 0.0) {
-      nn_[s] += p2 * eps * unit;
-      if (wall) {
-        const double len = index_.metric(g);
-        const double rest = len - c2_[s];
-        const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
-        double density;
-        if (lb2_[s]) {
-          // Only a lower bound of what came before is known: W2 is anywhere up to the rest.
-          const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len));
-          const double over = std::max(0.0, e.metric_in - rest) / sigma;
-          density = std::exp(-0.5 * over * over) / len;
-        } else {
-          // W1 + ribbon + W2 spans the whole wall: its odometry error, two more jambs and
-          // the ribbon's measured width all land on W2.
-          const SensingNoise& nz = model_.noise;
-          const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
-          const double base = nz.WallSigmaIn(len);
-          const double sigma = std::max(
-              1.0,
-              std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
-          const double z = (e.metric_in - rest) / sigma;
-          density = std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
-        }
-        nn_[s] += p2 * angle * density;
-      }
-    }
+    if (p2 > 0.0) NextFromSecondPart(s, p2, e);
   }
   n_.swap(nn_);
   i1_.swap(ni1_);
@@ -398,6 +284,155 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
     if (!door) after.metric_is_lower_bound = true;
     AddPrior(after, leaving);
   }
+}
+
+void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e,
+                                 double* leaving) {
+  const Confusion& cf = model_.confusion;
+  const double eps = model_.settings.outlier;
+  const bool door = map::IsDoorCode(e.code);
+  const bool wall = e.code == map::kWallCode;
+  const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
+  const int n1 = index_.Step(g, dir);
+  if (n1 < 0) return;
+  if (index_.open_end(n1)) {
+    *leaving += pn;
+    return;
+  }
+  const int s1 = State(n1, dir);
+  const map::SymbolCode code1 = index_.code(n1);
+  const double angle = AngleFactor(n1, dir, e);
+  nn_[s1] += pn * eps * unit;  // an edge the model does not explain
+  if (wall && code1 == map::kWallCode) {
+    NextWallFromEnd(n1, dir, pn, angle, e);
+  } else if (wall && map::IsDoorCode(code1)) {
+    // A missed door seen as wall surface (at a corner), maybe with the wall after it.
+    const double d = index_.metric(n1);
+    nn_[s1] += pn * angle * cf.missed * WallDensity(e.metric_in, d);
+    const int w = index_.Step(n1, dir);
+    if (w >= 0 && index_.code(w) == map::kWallCode) {
+      const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
+      if (Coplanar(a_out)) {
+        nn_[State(w, dir)] += pn * angle * cf.missed * (1.0 - cf.false_door) *
+                              WallDensity(e.metric_in, d + index_.metric(w));
+      }
+    }
+  } else if (door && map::IsDoorCode(code1)) {
+    const int k = code1 - 1, c = e.code - 1;
+    const double pc = k == c ? cf.correct : cf.missized * cf.missized_to[k][c];
+    nn_[s1] += pn * angle * pc;
+  } else if (!door && !wall && code1 == e.code) {
+    nn_[s1] += pn * angle * WallDensity(e.metric_in, index_.metric(n1));
+  }
+}
+
+void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
+                                     const map::SensedEdge& e) {
+  const double pf = model_.confusion.false_door;
+  const int s1 = State(n1, dir);
+  const double len1 = index_.metric(n1);
+  nn_[s1] += pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1);
+  const int n2 = index_.Step(n1, dir);
+  if (n2 >= 0 && index_.open_end(n2)) {
+    // The wall before an open end, run on out through it to wherever the next edge
+    // was seen: the robot is outside from the next edge on.
+    const double reach = model_.settings.open_end_reach_in;
+    const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len1));
+    if (e.metric_in >= len1 - 2.0 * sigma && e.metric_in <= len1 + reach) {
+      outside_ += pn * angle * (1.0 - pf) / (reach + 2.0 * sigma);
+    }
+  }
+  if (e.metric_in <= len1) {
+    // W1 of a wall holding a false door: the ribbon is anywhere in the wall.
+    const double add = pn * angle * pf / len1;
+    if (add > ni1_[s1]) {
+      nc1_[s1] = e.metric_in;
+      nlb1_[s1] = 0;
+    }
+    ni1_[s1] += add;
+  }
+  NextWallOverMissedDoors(n1, dir, pn, angle, e);
+}
+
+void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double angle,
+                                             const map::SensedEdge& e) {
+  const Confusion& cf = model_.confusion;
+  const double pf = cf.false_door;
+  // One sensed wall over missed doors on a flat wall: wall, door, wall, ...
+  double total = index_.metric(n1), p = (1.0 - pf);
+  int cur = n1;
+  for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
+    const int d = index_.Step(cur, dir);
+    if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
+    const int w = index_.Step(d, dir);
+    if (w < 0 || index_.code(w) != map::kWallCode) break;
+    const double a_in = dir > 0 ? index_.angle_start(d) : index_.angle_end(d);
+    const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
+    if (!Coplanar(a_in) || !Coplanar(a_out)) break;
+    const double before_w = total + index_.metric(d);
+    const double len_w = index_.metric(w);
+    if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
+      // ... ending in the first part of a wall that holds a false door.
+      const int sw = State(w, dir);
+      const double add = pn * angle * p * cf.missed * pf / len_w;
+      if (add > ni1_[sw]) {
+        nc1_[sw] = e.metric_in - before_w;
+        nlb1_[sw] = 0;
+      }
+      ni1_[sw] += add;
+    }
+    total = before_w + len_w;
+    p *= cf.missed * (1.0 - pf);
+    nn_[State(w, dir)] += pn * angle * p * WallDensity(e.metric_in, total);
+    cur = w;
+  }
+}
+
+void BayesLocalizer::NextFromFirstPart(int s, double p1, const map::SensedEdge& e) {
+  const double eps = model_.settings.outlier;
+  const bool door = map::IsDoorCode(e.code);
+  const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
+  nn_[s] += p1 * eps * unit;
+  if (door) {
+    // The false door that ended W1.
+    const double w = e.metric_in > 0.0 ? e.metric_in : ClassWidth(e.code);
+    const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
+    ni2_[s] += p1 * angle * model_.confusion.false_class[e.code - 1];
+    nc2_[s] = c1_[s] + w;
+    nc1_[s] = c1_[s];  // I1 and I2 of one wall never hold mass at the same step
+    nlb2_[s] = lb1_[s];
+  }
+}
+
+void BayesLocalizer::NextFromSecondPart(int s, double p2, const map::SensedEdge& e) {
+  const double eps = model_.settings.outlier;
+  const bool door = map::IsDoorCode(e.code);
+  const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
+  nn_[s] += p2 * eps * unit;
+  if (e.code == map::kWallCode) {
+    const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
+    nn_[s] += p2 * angle * SecondPartDensity(s, e);
+  }
+}
+
+double BayesLocalizer::SecondPartDensity(int s, const map::SensedEdge& e) const {
+  const double len = index_.metric(s / 2);
+  const double rest = len - c2_[s];
+  if (lb2_[s]) {
+    // Only a lower bound of what came before is known: W2 is anywhere up to the rest.
+    const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len));
+    const double over = std::max(0.0, e.metric_in - rest) / sigma;
+    return std::exp(-0.5 * over * over) / len;
+  }
+  // W1 + ribbon + W2 spans the whole wall: its odometry error, two more jambs and
+  // the ribbon's measured width all land on W2.
+  const SensingNoise& nz = model_.noise;
+  const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
+  const double base = nz.WallSigmaIn(len);
+  const double sigma = std::max(
+      1.0, std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
+  const double z = (e.metric_in - rest) / sigma;
+  return std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
 }
 
 void BayesLocalizer::Normalise() {

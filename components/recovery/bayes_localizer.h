@@ -87,7 +87,19 @@ class BayesLocalizer {
   void First(const map::SensedEdge& e);
   // Adds `weight` times the belief a first sensed edge `e` gives (a start anywhere).
   void AddPrior(const map::SensedEdge& e, double weight);
+  // AddPrior()'s share for a partial wall `e` seen in wall g that began earlier, behind g
+  // in direction `dir`, and ran over missed doors into g.
+  double PriorOverMissedDoors(int g, int dir, double sigma, const map::SensedEdge& e) const;
   void Next(const map::SensedEdge& e);
+  // Next() for the mass of one state, phase by phase: from N(g), from I1(s), from I2(s).
+  // NextFromEnd adds the mass that leaves the ring through an open end to `leaving`.
+  void NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e, double* leaving);
+  void NextWallFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
+  void NextWallOverMissedDoors(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
+  void NextFromFirstPart(int s, double p1, const map::SensedEdge& e);
+  void NextFromSecondPart(int s, double p2, const map::SensedEdge& e);
+  // The density of the wall `e` as W2, the rest of the wall of state s after its false door.
+  double SecondPartDensity(int s, const map::SensedEdge& e) const;
   void Normalise();
   // Reverse() of the mass at (the last sensed edge before `first`, dir), travelled_in into
   // `first` and beyond: into nn_.

@@ -96,68 +96,82 @@ void SensedStream::ProcessNextTrueEdge() {
   p.truth = g;
   p.start_angle = start_angle;
   if (map::IsDoorCode(code)) {
-    const int k = code - 1;
-    const double u = Uniform();
-    if (u < confusion_.correct) {
-      p.kind = Piece::kDoor;
-      p.code = code;
-      p.true_width_in = len;
-      p.whole_edge = true;
-    } else if (u < confusion_.correct + confusion_.missized) {
-      p.kind = Piece::kDoor;
-      p.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(confusion_.missized_to[k])));
-      p.true_width_in = len;
-      p.error = true;
-    } else {
-      p.kind = Piece::kSurface;
-      p.code = map::kWallCode;
-      p.error = true;
-      p.missed_door = true;
-    }
-    AddPiece(p);
+    SenseDoor(p, code, len);
     return;
   }
   if (code == map::kWallCode) {
-    if (confusion_.false_door > 0.0 && Uniform() < confusion_.false_door) {
-      const int c = DrawClass(confusion_.false_class);
-      const double w = map::DoorClassWidthIn(static_cast<map::DoorClass>(c));
-      const double at = Uniform() * std::max(0.0, len - w);
-      if (len > w) {
-        // The ribbon splits the wall: W1, a false door, W2 (§6.4.2 false positive).
-        Piece w1 = p;
-        w1.kind = Piece::kSurface;
-        w1.b = a + at;
-        w1.error = true;
-        Piece door = p;
-        door.kind = Piece::kDoor;
-        door.code = map::DoorCode(static_cast<map::DoorClass>(c));
-        door.a = a + at;
-        door.b = a + at + w;
-        door.true_width_in = w;
-        door.error = true;
-        door.start_angle = 180.0;
-        Piece w2 = p;
-        w2.kind = Piece::kSurface;
-        w2.a = door.b;
-        w2.error = true;
-        w2.start_angle = 180.0;
-        AddPiece(w1);
-        AddPiece(door);
-        AddPiece(w2);
-        return;
-      }
-      // A wall narrower than the ribbon cannot hold a false door of that class.
-    }
-    p.kind = Piece::kSurface;
-    p.code = map::kWallCode;
-    p.whole_edge = true;
-    AddPiece(p);
+    SenseWall(p, len);
     return;
   }
   p.kind = Piece::kOther;
   p.code = code;
   p.whole_edge = true;
   AddPiece(p);
+}
+
+void SensedStream::SenseDoor(Piece p, map::SymbolCode code, double len) {
+  const int k = code - 1;
+  const double u = Uniform();
+  if (u < confusion_.correct) {
+    p.kind = Piece::kDoor;
+    p.code = code;
+    p.true_width_in = len;
+    p.whole_edge = true;
+  } else if (u < confusion_.correct + confusion_.missized) {
+    p.kind = Piece::kDoor;
+    p.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(confusion_.missized_to[k])));
+    p.true_width_in = len;
+    p.error = true;
+  } else {
+    p.kind = Piece::kSurface;
+    p.code = map::kWallCode;
+    p.error = true;
+    p.missed_door = true;
+  }
+  AddPiece(p);
+}
+
+void SensedStream::SenseWall(Piece p, double len) {
+  if (confusion_.false_door > 0.0 && Uniform() < confusion_.false_door) {
+    const int c = DrawClass(confusion_.false_class);
+    const double w = map::DoorClassWidthIn(static_cast<map::DoorClass>(c));
+    const double at = Uniform() * std::max(0.0, len - w);
+    if (len > w) {
+      // The ribbon splits the wall: W1, a false door, W2 (§6.4.2 false positive).
+      SplitByFalseDoor(p, c, w, at);
+      return;
+    }
+    // A wall narrower than the ribbon cannot hold a false door of that class.
+  }
+  p.kind = Piece::kSurface;
+  p.code = map::kWallCode;
+  p.whole_edge = true;
+  AddPiece(p);
+}
+
+void SensedStream::SplitByFalseDoor(const Piece& p, int false_class, double width_in,
+                                    double at_in) {
+  const double a = p.a;
+  Piece w1 = p;
+  w1.kind = Piece::kSurface;
+  w1.b = a + at_in;
+  w1.error = true;
+  Piece door = p;
+  door.kind = Piece::kDoor;
+  door.code = map::DoorCode(static_cast<map::DoorClass>(false_class));
+  door.a = a + at_in;
+  door.b = a + at_in + width_in;
+  door.true_width_in = width_in;
+  door.error = true;
+  door.start_angle = 180.0;
+  Piece w2 = p;
+  w2.kind = Piece::kSurface;
+  w2.a = door.b;
+  w2.error = true;
+  w2.start_angle = 180.0;
+  AddPiece(w1);
+  AddPiece(door);
+  AddPiece(w2);
 }
 
 void SensedStream::AddPiece(const Piece& piece) {

@@ -92,6 +92,11 @@ class SensedStream {
     double start_angle = 180;  // sensed angle at its start
   };
   void ProcessNextTrueEdge();
+  // The error model's draws for one true door or wall `p` (a piece of length `len`).
+  void SenseDoor(Piece p, map::SymbolCode code, double len);
+  void SenseWall(Piece p, double len);
+  // The false door of class `false_class`, width_in wide, at_in into wall `p`.
+  void SplitByFalseDoor(const Piece& p, int false_class, double width_in, double at_in);
   void AddPiece(const Piece& p);
   void FlushRun(bool door_follows);
   void EmitDoor(const Piece& p);

@@ -62,6 +62,57 @@ bool FitWall(const SonarRingModel& ring, const std::vector<double>& bearings,
   return true;
 }
 
+// A scan with one range and one validity flag per sensor, each valid range inside the
+// ring's working range.
+Result<bool> CheckScan(const SonarRingModel& ring, const SonarScan& scan) {
+  const std::size_t n = static_cast<std::size_t>(ring.count);
+  if (scan.ranges_in.size() != n || scan.valid.size() != n) {
+    return Result<bool>::Fail(
+        SensingError::kBadSonarRange,
+        "a scan needs " + std::to_string(n) + " ranges and validity flags, got " +
+            std::to_string(scan.ranges_in.size()) + " and " + std::to_string(scan.valid.size()));
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (scan.valid[k] && !ring.InRange(scan.ranges_in[k])) {
+      return Result<bool>::Fail(
+          SensingError::kBadSonarRange,
+          "sensor " + std::to_string(k) + " is flagged valid but reads " + Num(scan.ranges_in[k]) +
+              " in (valid: " + Num(ring.min_range_in) + ".." + Num(ring.max_range_in) + " in)");
+    }
+  }
+  return Result<bool>::Ok(true);
+}
+
+// Every candidate well formed, not only the ones that will be tried.
+Result<bool> CheckCandidates(const CameraModel& camera,
+                             const std::vector<JambCandidate>& candidates) {
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const auto fp = CheckFootprints(camera, candidates[i].footprints);
+    if (!fp) {
+      return Result<bool>::Fail(fp.error(), "candidate " + std::to_string(i) + ": " + fp.message());
+    }
+    if (!std::isfinite(candidates[i].confidence)) {
+      return Result<bool>::Fail(SensingError::kBadFootprint,
+                                "candidate " + std::to_string(i) + ": confidence is not finite");
+    }
+  }
+  return Result<bool>::Ok(true);
+}
+
+// Indices of the candidates at or above the threshold, in decreasing confidence (ties in
+// the caller's order).
+std::vector<std::size_t> ByConfidence(const std::vector<JambCandidate>& candidates,
+                                      double min_confidence) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (candidates[i].confidence >= min_confidence) order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return candidates[a].confidence > candidates[b].confidence;
+  });
+  return order;
+}
+
 }  // namespace
 
 LandmarkEstimator::LandmarkEstimator(const RobotConfig& robot, LandmarkEstimatorConfig config)
@@ -127,6 +178,13 @@ Result<bool> LandmarkEstimator::FillOpenDoor(const Footprints& fp, std::vector<d
     if (off_l && off_r && (left >= 0 || right >= 0)) edge = true;
   }
   if (!edge) return Result<bool>::Ok(false);
+  return FillFromFlankWall(flank, inside, ranges, valid);
+}
+
+Result<bool> LandmarkEstimator::FillFromFlankWall(const std::vector<int>& flank,
+                                                  const std::vector<int>& inside,
+                                                  std::vector<double>* ranges,
+                                                  std::vector<bool>* valid) const {
   if (flank.size() < 2) {
     return Result<bool>::Fail(SensingError::kOpenDoorUnresolved,
                               "depth edge inside the door but fewer than two flank readings");
@@ -160,43 +218,18 @@ Result<LandmarkObservation> LandmarkEstimator::Estimate(
     const SonarScan& scan, const std::vector<JambCandidate>& candidates,
     std::optional<double> lateral_offset_in) const {
   using R = Result<LandmarkObservation>;
-  const std::size_t n = static_cast<std::size_t>(ring_.count);
-  if (scan.ranges_in.size() != n || scan.valid.size() != n) {
-    return R::Fail(SensingError::kBadSonarRange, "a scan needs " + std::to_string(n) +
-                                                     " ranges and validity flags, got " +
-                                                     std::to_string(scan.ranges_in.size()) +
-                                                     " and " + std::to_string(scan.valid.size()));
-  }
-  for (std::size_t k = 0; k < n; ++k) {
-    if (scan.valid[k] && !ring_.InRange(scan.ranges_in[k])) {
-      return R::Fail(SensingError::kBadSonarRange,
-                     "sensor " + std::to_string(k) + " is flagged valid but reads " +
-                         Num(scan.ranges_in[k]) + " in (valid: " + Num(ring_.min_range_in) + ".." +
-                         Num(ring_.max_range_in) + " in)");
-    }
-  }
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const auto fp = CheckFootprints(camera_, candidates[i].footprints);
-    if (!fp) return R::Fail(fp.error(), "candidate " + std::to_string(i) + ": " + fp.message());
-    if (!std::isfinite(candidates[i].confidence)) {
-      return R::Fail(SensingError::kBadFootprint,
-                     "candidate " + std::to_string(i) + ": confidence is not finite");
-    }
+  if (const auto ok = CheckScan(ring_, scan); !ok) return R::Fail(ok.error(), ok.message());
+  if (const auto ok = CheckCandidates(camera_, candidates); !ok) {
+    return R::Fail(ok.error(), ok.message());
   }
   if (lateral_offset_in && !std::isfinite(*lateral_offset_in)) {
     return R::Fail(SensingError::kBadParameter, "lateral offset is not finite");
   }
 
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (candidates[i].confidence >= config_.min_confidence) order.push_back(i);
-  }
+  const std::vector<std::size_t> order = ByConfidence(candidates, config_.min_confidence);
   if (order.empty()) {
     return R::Fail(SensingError::kNoCandidate, "no candidate at or above the confidence threshold");
   }
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return candidates[a].confidence > candidates[b].confidence;
-  });
 
   std::string tried;
   std::optional<R> last_failure;
@@ -234,26 +267,33 @@ Result<LandmarkObservation> LandmarkEstimator::Estimate(
       tried += (tried.empty() ? "" : ", ") + Num(*width);
       continue;
     }
-    LandmarkObservation obs;
-    obs.door_class = *cls;
-    obs.width_in = *width;
-    obs.confidence = c.confidence;
-    obs.footprints = c.footprints;
-    obs.candidate_index = static_cast<int>(idx);
-    obs.range_in = rs->sdis_in;
-    obs.theta_rad = rs->theta_rad;
-    obs.look_angle_rad = StareFromTheta(rs->theta_rad);
-    obs.open_door = *open;
-    obs.in_envelope =
-        std::abs(rs->theta_rad) <= config_.envelope_axis_angle_rad &&
-        (!lateral_offset_in || std::abs(*lateral_offset_in) <= config_.envelope_lateral_in);
-    return R::Ok(obs);
+    return R::Ok(Observation(c, idx, *cls, *width, *rs, *open, lateral_offset_in));
   }
   if (!tried.empty()) {
     return R::Fail(SensingError::kOutsideEveryClass,
                    "no candidate width falls in a door class (widths " + tried + " in)");
   }
   return *last_failure;
+}
+
+LandmarkObservation LandmarkEstimator::Observation(const JambCandidate& c, std::size_t idx,
+                                                   DoorClass door_class, double width_in,
+                                                   const Ranges& rs, bool open_door,
+                                                   std::optional<double> lateral_offset_in) const {
+  LandmarkObservation obs;
+  obs.door_class = door_class;
+  obs.width_in = width_in;
+  obs.confidence = c.confidence;
+  obs.footprints = c.footprints;
+  obs.candidate_index = static_cast<int>(idx);
+  obs.range_in = rs.sdis_in;
+  obs.theta_rad = rs.theta_rad;
+  obs.look_angle_rad = StareFromTheta(rs.theta_rad);
+  obs.open_door = open_door;
+  obs.in_envelope =
+      std::abs(rs.theta_rad) <= config_.envelope_axis_angle_rad &&
+      (!lateral_offset_in || std::abs(*lateral_offset_in) <= config_.envelope_lateral_in);
+  return obs;
 }
 
 }  // namespace stickrep::sensing

@@ -82,6 +82,14 @@ class LandmarkEstimator {
   // edge is there. Returns whether it did; fails if a fit is needed but impossible.
   Result<bool> FillOpenDoor(const Footprints& fp, std::vector<double>* ranges,
                             std::vector<bool>* valid) const;
+  // FillOpenDoor() once it found a depth edge: fits the wall through the `flank` sensors'
+  // readings and puts its echoes in place of the `inside` ones.
+  Result<bool> FillFromFlankWall(const std::vector<int>& flank, const std::vector<int>& inside,
+                                 std::vector<double>* ranges, std::vector<bool>* valid) const;
+  // The observation of the winning candidate c (index idx in the caller's list).
+  LandmarkObservation Observation(const JambCandidate& c, std::size_t idx, DoorClass door_class,
+                                  double width_in, const Ranges& rs, bool open_door,
+                                  std::optional<double> lateral_offset_in) const;
 
   CameraModel camera_;
   SonarRingModel ring_;

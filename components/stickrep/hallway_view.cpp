@@ -14,6 +14,25 @@ namespace {
 
 bool IsCorner(double angle_deg) { return std::abs(angle_deg - 180.0) > 1.0; }
 
+// The edge before e in ring order; -1 before the first edge of an open ring.
+int PrevEdge(const Ring& ring, int e) {
+  const int n = ring.EdgeCount();
+  return ring.closed ? (e - 1 + n) % n : e - 1;
+}
+
+// The map's joins between the view nodes that stand for their nodes (node_of: [ring]
+// [original node] -> view node).
+std::vector<Join> ViewJoins(const Map& map, const std::vector<std::vector<int>>& node_of) {
+  std::vector<Join> joins;
+  for (Join j : map.joins()) {
+    const int from = map.FindRing(j.ring), to = map.FindRing(j.to_ring);
+    j.node = node_of[from][j.node];
+    j.to_node = node_of[to][j.to_node];
+    joins.push_back(j);
+  }
+  return joins;
+}
+
 }  // namespace
 
 double HallwayView::HallwayWidthIn(int r) const {
@@ -124,112 +143,124 @@ bool HallwayView::IsRecessSide(int r, int e) const {
   return false;
 }
 
+std::vector<bool> HallwayView::StepEdges(int r) const {
+  const int n = original_.ring(r).EdgeCount();
+  std::vector<bool> step(n);
+  for (int e = 0; e < n; ++e) {
+    step[e] = (config_.max_step_in > 0.0 && IsStep(r, e)) || IsRecessSide(r, e);
+  }
+  return step;
+}
+
+bool HallwayView::Merges(int r, const std::vector<bool>& step, int e) const {
+  const Ring& ring = original_.ring(r);
+  if (step[e]) return false;
+  int p = PrevEdge(ring, e);
+  if (p < 0) return false;
+  if (!step[p]) {
+    // A bend the follower follows without turning: between two wall-like edges.
+    const Node& node = ring.nodes[e];
+    const bool bend = !node.artificial && std::abs(node.angle_deg - 180.0) <= config_.max_bend_deg;
+    return bend && WallLike(r, p) && WallLike(r, e);
+  }
+  while (p >= 0 && step[p] && p != e) p = ring.closed || p > 0 ? PrevEdge(ring, p) : -1;
+  return p >= 0 && p != e && WallLike(r, p) && WallLike(r, e);
+}
+
+int HallwayView::StartEdge(int r, const std::vector<bool>& step) const {
+  const Ring& ring = original_.ring(r);
+  const int n = ring.EdgeCount();
+  // Start at a kept edge that begins a view edge.
+  int start = -1;
+  for (int e = 0; e < n && start < 0; ++e) {
+    if (!step[e] && !Merges(r, step, e)) start = e;
+  }
+  if (start < 0) {  // every boundary merges (walls and steps only): keep them apart
+    for (int e = 0; e < n && start < 0; ++e) {
+      if (!step[e]) start = e;
+    }
+  }
+  if (start < 0) {
+    throw std::invalid_argument("ring '" + ring.id + "' has only steps");
+  }
+  if (!ring.closed) start = 0;  // edge 0 of an open ring is never a step
+  return start;
+}
+
+Node HallwayView::ViewNode(int r, const std::vector<bool>& step, int e) const {
+  const Ring& ring = original_.ring(r);
+  Node node = ring.nodes[e];
+  const int before = PrevEdge(ring, e);
+  if (before >= 0 && step[before]) node.angle_deg = 180.0;  // the step's corner is gone
+  if (std::abs(node.angle_deg - 180.0) > config_.max_bend_deg) {
+    node.angle_deg = node.angle_deg < 180.0 ? 90.0 : 270.0;  // the turn the follower makes
+  }
+  return node;
+}
+
+Ring HallwayView::CollapseRing(int r, std::vector<int>* node_of) {
+  const Ring& ring = original_.ring(r);
+  const int n = ring.EdgeCount();
+  std::vector<bool> step = StepEdges(r);
+  const int start = StartEdge(r, step);
+  Ring out;
+  out.id = ring.id;
+  out.closed = ring.closed;
+  std::vector<std::vector<int>> members;
+  std::vector<int> view_of(n, -1);
+  node_of->assign(ring.NodeCount(), -1);
+  // Original edge e becomes part of the last view edge.
+  const auto join_last = [&](int e) {
+    members.back().push_back(e);
+    view_of[e] = static_cast<int>(members.size()) - 1;
+  };
+  for (int k = 0; k < n; ++k) {
+    const int e = (start + k) % n;
+    if (step[e]) {
+      // A step belongs to the view edge before it.
+      if (!members.empty()) join_last(e);
+      steps_removed_++;
+      continue;
+    }
+    if (!members.empty() && k > 0 && Merges(r, step, e)) {
+      out.edges.back().metric_in += ring.edges[e].metric_in;
+      if (!step[PrevEdge(ring, e)]) out.edges.back().metric_in += BendTravelIn(r, ring.nodes[e]);
+      join_last(e);
+      continue;
+    }
+    (*node_of)[e] = static_cast<int>(out.nodes.size());
+    out.nodes.push_back(ViewNode(r, step, e));
+    out.edges.push_back(Sensed(r, e));
+    members.push_back({e});
+    view_of[e] = static_cast<int>(members.size()) - 1;
+  }
+  // Steps before the first kept edge of a closed ring close the last view edge.
+  for (int e = 0; e < n; ++e) {
+    if (view_of[e] < 0) join_last(e);
+  }
+  if (!ring.closed) {
+    (*node_of)[n] = static_cast<int>(out.nodes.size());
+    out.nodes.push_back(ring.nodes[n]);
+  }
+  // A node that is gone (a step's corner, a merged wall's joint) stands for the view node
+  // that begins the view edge it lies in: a join there (a hallway branching off beside a
+  // pilaster) is reached where the follower, passing the step straight, senses that wall.
+  for (int e = 0; e < n; ++e) {
+    if ((*node_of)[e] < 0) (*node_of)[e] = view_of[e];
+  }
+  members_.push_back(std::move(members));
+  view_of_.push_back(std::move(view_of));
+  step_.push_back(std::move(step));
+  return out;
+}
+
 HallwayView::HallwayView(const Map& map, HallwayViewConfig config)
     : config_(config), original_(map) {
   std::vector<Ring> rings;
   // [ring][original node] -> view node, for the joins; -1 when the node is gone.
   std::vector<std::vector<int>> node_of(map.RingCount());
-  for (int r = 0; r < map.RingCount(); ++r) {
-    const Ring& ring = map.ring(r);
-    const int n = ring.EdgeCount();
-    std::vector<bool> step(n);
-    for (int e = 0; e < n; ++e) {
-      step[e] = (config_.max_step_in > 0.0 && IsStep(r, e)) || IsRecessSide(r, e);
-    }
-    // Whether kept edge e continues the view edge of the kept edge before it: only steps
-    // lie between them and both are walls.
-    const auto prev = [&](int e) { return ring.closed ? (e - 1 + n) % n : e - 1; };
-    // A bend the follower follows without turning: between two wall-like edges.
-    const auto bend = [&](int e) {
-      const Node& node = ring.nodes[e];
-      return !node.artificial && std::abs(node.angle_deg - 180.0) <= config_.max_bend_deg;
-    };
-    const auto merges = [&](int e) {
-      if (step[e]) return false;
-      int p = prev(e);
-      if (p < 0) return false;
-      if (!step[p]) return bend(e) && WallLike(r, p) && WallLike(r, e);
-      while (p >= 0 && step[p] && p != e) p = ring.closed || p > 0 ? prev(p) : -1;
-      return p >= 0 && p != e && WallLike(r, p) && WallLike(r, e);
-    };
-    // Start at a kept edge that begins a view edge.
-    int start = -1;
-    for (int e = 0; e < n && start < 0; ++e) {
-      if (!step[e] && !merges(e)) start = e;
-    }
-    if (start < 0) {  // every boundary merges (walls and steps only): keep them apart
-      for (int e = 0; e < n && start < 0; ++e) if (!step[e]) start = e;
-    }
-    Ring out;
-    out.id = ring.id;
-    out.closed = ring.closed;
-    std::vector<std::vector<int>> members;
-    std::vector<int> view_of(n, -1);
-    node_of[r].assign(ring.NodeCount(), -1);
-    if (start < 0) {
-      throw std::invalid_argument("ring '" + ring.id + "' has only steps");
-    }
-    if (!ring.closed) start = 0;  // edge 0 of an open ring is never a step
-    for (int k = 0; k < n; ++k) {
-      const int e = (start + k) % n;
-      if (step[e]) {
-        // A step belongs to the view edge before it.
-        if (!members.empty()) {
-          members.back().push_back(e);
-          view_of[e] = static_cast<int>(members.size()) - 1;
-        }
-        steps_removed_++;
-        continue;
-      }
-      if (!members.empty() && k > 0 && merges(e)) {
-        out.edges.back().metric_in += ring.edges[e].metric_in;
-        if (!step[prev(e)]) out.edges.back().metric_in += BendTravelIn(r, ring.nodes[e]);
-        members.back().push_back(e);
-        view_of[e] = static_cast<int>(members.size()) - 1;
-        continue;
-      }
-      Node node = ring.nodes[e];
-      const int before = prev(e);
-      if (before >= 0 && step[before]) node.angle_deg = 180.0;  // the step's corner is gone
-      if (std::abs(node.angle_deg - 180.0) > config_.max_bend_deg) {
-        node.angle_deg = node.angle_deg < 180.0 ? 90.0 : 270.0;  // the turn the follower makes
-      }
-      node_of[r][e] = static_cast<int>(out.nodes.size());
-      out.nodes.push_back(node);
-      out.edges.push_back(Sensed(r, e));
-      members.push_back({e});
-      view_of[e] = static_cast<int>(members.size()) - 1;
-    }
-    // Steps before the first kept edge of a closed ring close the last view edge.
-    for (int e = 0; e < n; ++e) {
-      if (view_of[e] < 0) {
-        members.back().push_back(e);
-        view_of[e] = static_cast<int>(members.size()) - 1;
-      }
-    }
-    if (!ring.closed) {
-      node_of[r][n] = static_cast<int>(out.nodes.size());
-      out.nodes.push_back(ring.nodes[n]);
-    }
-    // A node that is gone (a step's corner, a merged wall's joint) stands for the view node
-    // that begins the view edge it lies in: a join there (a hallway branching off beside a
-    // pilaster) is reached where the follower, passing the step straight, senses that wall.
-    for (int e = 0; e < n; ++e) {
-      if (node_of[r][e] < 0) node_of[r][e] = view_of[e];
-    }
-    rings.push_back(std::move(out));
-    members_.push_back(std::move(members));
-    view_of_.push_back(std::move(view_of));
-    step_.push_back(std::move(step));
-  }
-  std::vector<Join> joins;
-  for (Join j : map.joins()) {
-    const int from = map.FindRing(j.ring), to = map.FindRing(j.to_ring);
-    j.node = node_of[from][j.node];
-    j.to_node = node_of[to][j.to_node];
-    joins.push_back(j);
-  }
-  view_ = Map(map.info(), std::move(rings), std::move(joins));
+  for (int r = 0; r < map.RingCount(); ++r) rings.push_back(CollapseRing(r, &node_of[r]));
+  view_ = Map(map.info(), std::move(rings), ViewJoins(map, node_of));
 }
 
 HallwayView::Place HallwayView::ToOriginal(int ring, int edge, int dir, double offset_in) const {

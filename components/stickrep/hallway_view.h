@@ -107,6 +107,19 @@ class HallwayView {
   double WidestSeenDoorIn(int r) const;
   // What the base's odometer travels beyond the wall's length at bend `bend` of ring r.
   double BendTravelIn(int r, const Node& bend) const;
+  // Whether each original edge of ring r is a step (or a recess side) the follower passes.
+  std::vector<bool> StepEdges(int r) const;
+  // Whether kept edge e of ring r continues the view edge of the kept edge before it: only
+  // steps lie between them and both are walls.
+  bool Merges(int r, const std::vector<bool>& step, int e) const;
+  // The edge of ring r its view starts at: a kept edge that begins a view edge (edge 0 of an
+  // open ring). Throws std::invalid_argument when the ring has only steps.
+  int StartEdge(int r, const std::vector<bool>& step) const;
+  // The node of ring r that begins the view edge of kept edge e, as the follower senses it.
+  Node ViewNode(int r, const std::vector<bool>& step, int e) const;
+  // Ring r of the view; records its members, view edges and steps. node_of: [original node]
+  // -> view node, for the joins.
+  Ring CollapseRing(int r, std::vector<int>* node_of);
 
   HallwayViewConfig config_;
   Map original_;

@@ -43,6 +43,210 @@ void PrewittRowScaled(const std::uint8_t* data, int width, std::size_t step, int
   }
 }
 
+// Step (1) on the processed rows: their scaled responses, row after row.
+std::vector<int> FilterRows(const std::uint8_t* data, int width, std::size_t step,
+                            const std::vector<int>& rows) {
+  const int n_rows = static_cast<int>(rows.size());
+  std::vector<int> response(static_cast<std::size_t>(n_rows) * width);
+  std::vector<int> colsum(width);
+  for (int i = 0; i < n_rows; ++i) {
+    PrewittRowScaled(data, width, step, rows[i], colsum.data(),
+                     response.data() + static_cast<std::size_t>(i) * width);
+  }
+  return response;
+}
+
+// Step (2), "thresholding to pass top 5%": the (1 - fraction) quantile of |response| over the
+// processed pixels, found exactly from a histogram (responses are integers x15). Scaled x15.
+int ThresholdScaled(const std::vector<int>& response, int n_rows, int width,
+                    const RibbonDetectorParams& params) {
+  std::vector<int> histogram(kMaxScaledResponse + 1, 0);
+  for (int i = 0; i < n_rows; ++i) {
+    const int* row = response.data() + static_cast<std::size_t>(i) * width;
+    for (int c = kHalf; c < width - kHalf; ++c)
+      ++histogram[std::min(std::abs(row[c]), kMaxScaledResponse)];
+  }
+  const long long total = static_cast<long long>(n_rows) * (width - 2 * kHalf);
+  const long long pass_target =
+      static_cast<long long>(std::ceil(params.threshold_fraction * static_cast<double>(total)));
+  int level_scaled = kMaxScaledResponse;
+  long long passed = 0;
+  while (level_scaled > 0 && passed + histogram[level_scaled] <= pass_target) {
+    passed += histogram[level_scaled];
+    --level_scaled;
+  }
+  // level_scaled is now the largest level whose inclusion would exceed the target; pass
+  // only what is strictly above it, and never below the noise floor.
+  int threshold_scaled = level_scaled + 1;
+  const int floor_scaled =
+      static_cast<int>(std::ceil(params.min_edge_level * kPrewittScale - 1e-9));
+  threshold_scaled = std::max({threshold_scaled, floor_scaled, 1});
+  return threshold_scaled;
+}
+
+// Step (3)'s output: per column bin, and which processed pixels passed the threshold.
+struct Projection {
+  std::vector<double> projection;         // V(c) = sum_r I(r, c), grey levels
+  std::vector<double> signed_sum;         // the same with sign, for polarity
+  std::vector<int> nonempty;              // 1 when some processed row passes in bin c
+  std::vector<std::uint8_t> passed_mask;  // [row i * width + c]
+};
+
+// Step (3): vertical integral projection V(c) = sum_r I(r, c) of the thresholded response,
+// plus the count of rows passing in each column bin and the signed sum for polarity.
+Projection Project(const std::vector<int>& response, int n_rows, int width, int threshold_scaled) {
+  Projection p;
+  p.projection.assign(width, 0.0);
+  p.signed_sum.assign(width, 0.0);
+  p.nonempty.assign(width, 0);
+  p.passed_mask.assign(static_cast<std::size_t>(n_rows) * width, 0);
+  for (int i = 0; i < n_rows; ++i) {
+    const int* row = response.data() + static_cast<std::size_t>(i) * width;
+    std::uint8_t* mask = p.passed_mask.data() + static_cast<std::size_t>(i) * width;
+    for (int c = kHalf; c < width - kHalf; ++c) {
+      const int a = std::abs(row[c]);
+      if (a < threshold_scaled) continue;
+      mask[c] = 1;
+      p.projection[c] += static_cast<double>(a) / kPrewittScale;
+      p.signed_sum[c] += static_cast<double>(row[c]) / kPrewittScale;
+      p.nonempty[c] = 1;
+    }
+  }
+  return p;
+}
+
+// Step (4), which bins clump: a window of clump_window_bins bins holding at least
+// clump_min_nonempty non-empty bins joins its non-empty bins into one clump (§4.1.1).
+// member[c]: bin c is in a clump; linked[c]: bin c is joined to the next non-empty bin.
+void MarkClumps(const std::vector<int>& nonempty, int width, const RibbonDetectorParams& params,
+                std::vector<std::uint8_t>* member, std::vector<int>* linked) {
+  const int win = params.clump_window_bins;
+  int count = 0;
+  for (int c = 0; c < std::min(win, width); ++c) count += nonempty[c];
+  for (int s = 0; s + win <= width; ++s) {
+    if (s > 0) count += nonempty[s + win - 1] - nonempty[s - 1];
+    if (count < params.clump_min_nonempty) continue;
+    int prev = -1;
+    for (int c = s; c < s + win; ++c) {
+      if (!nonempty[c]) continue;
+      (*member)[c] = 1;
+      if (prev >= 0) (*linked)[prev] = 1;
+      prev = c;
+    }
+  }
+}
+
+// Location of the clump [first, last]: the centre of mass of the bins in its heaviest clump
+// window (five bins). A clump can chain several windows (a rolled outer row landing next to
+// the casing's other edge, §4.1.1 roll); the centre of mass of the whole chain would fall
+// between edges, while the heaviest window holds the edge the centre rows agree on.
+double HeaviestWindowColumn(const std::vector<double>& projection, int first, int last, int win) {
+  int best_start = first;
+  double best_mass = -1.0;
+  for (int s0 = first; s0 <= std::max(first, last - win + 1); ++s0) {
+    double m = 0.0;
+    for (int k = s0; k < s0 + win && k <= last; ++k) m += projection[k];
+    if (m > best_mass) {
+      best_mass = m;
+      best_start = s0;
+    }
+  }
+  double moment = 0.0;
+  double mass = 0.0;
+  for (int k = best_start; k < best_start + win && k <= last; ++k) {
+    moment += k * projection[k];
+    mass += projection[k];
+  }
+  return moment / mass;
+}
+
+// Processed rows with a thresholded pixel in bins [first, last].
+int RowsHit(const std::vector<std::uint8_t>& passed_mask, int n_rows, int width, int first,
+            int last) {
+  int rows_hit = 0;
+  for (int i = 0; i < n_rows; ++i) {
+    const std::uint8_t* mask = passed_mask.data() + static_cast<std::size_t>(i) * width;
+    for (int k = first; k <= last; ++k) {
+      if (mask[k]) {
+        ++rows_hit;
+        break;
+      }
+    }
+  }
+  return rows_hit;
+}
+
+// Step (4): the clumps of the projection as footprints, left to right, each weighted by its
+// share of the frame's thresholded edge response.
+void ClumpFootprints(const Projection& proj, int n_rows, int width,
+                     const RibbonDetectorParams& params, std::vector<Footprint>* footprints) {
+  const std::vector<int>& nonempty = proj.nonempty;
+  std::vector<int> next_nonempty_linked(width, 0);  // bin c is joined to the next non-empty
+  std::vector<std::uint8_t> member(width, 0);
+  MarkClumps(nonempty, width, params, &member, &next_nonempty_linked);
+  double total_strength = 0.0;
+  for (int c = 0; c < width;) {
+    if (!member[c]) {
+      ++c;
+      continue;
+    }
+    Footprint fp;
+    fp.first_bin = c;
+    double polarity = 0.0;
+    int last = c;
+    for (int k = c; k < width; ++k) {
+      if (!nonempty[k]) continue;
+      if (k != c && !next_nonempty_linked[last]) break;
+      fp.strength += proj.projection[k];
+      polarity += proj.signed_sum[k];
+      last = k;
+    }
+    fp.last_bin = last;
+    fp.polarity = polarity >= 0.0 ? 1 : -1;
+    fp.column_px =
+        HeaviestWindowColumn(proj.projection, fp.first_bin, fp.last_bin, params.clump_window_bins);
+    fp.rows_hit = RowsHit(proj.passed_mask, n_rows, width, fp.first_bin, fp.last_bin);
+    total_strength += fp.strength;
+    footprints->push_back(fp);
+    c = last + 1;
+  }
+  for (Footprint& fp : *footprints) fp.weight = fp.strength / total_strength;
+}
+
+// Step (5), candidate pairs, highest confidence first. Confidence: the geometric mean of the
+// two footprint weights (their share of the frame's edge energy), times each footprint's
+// vertical persistence (share of processed rows it appears in: "ribbon length is a strong
+// indicator of a large vertical feature", §4.1.1), times a penalty for like polarity.
+void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
+                    const RibbonDetectorParams& params, std::vector<CandidatePair>* pairs) {
+  const int n_fp = static_cast<int>(footprints.size());
+  for (int i = 0; i < n_fp; ++i) {
+    const Footprint& l = footprints[i];
+    for (int j = i + 1; j < n_fp; ++j) {
+      const Footprint& r = footprints[j];
+      const double w = r.column_px - l.column_px;
+      if (w < params.min_pair_width_px || w > params.max_pair_width_px) continue;
+      CandidatePair pair;
+      pair.left_px = l.column_px;
+      pair.right_px = r.column_px;
+      pair.width_px = w;
+      pair.left_index = i;
+      pair.right_index = j;
+      pair.confidence = std::sqrt(l.weight * r.weight) *
+                        (static_cast<double>(l.rows_hit) / n_rows) *
+                        (static_cast<double>(r.rows_hit) / n_rows) *
+                        (l.polarity != r.polarity ? 1.0 : params.same_polarity_factor);
+      pairs->push_back(pair);
+    }
+  }
+  std::stable_sort(
+      pairs->begin(), pairs->end(),
+      [](const CandidatePair& a, const CandidatePair& b) { return a.confidence > b.confidence; });
+  if (static_cast<int>(pairs->size()) > params.max_pairs) {
+    pairs->resize(params.max_pairs);
+  }
+}
+
 }  // namespace
 
 const char* ToString(DetectStatus status) {
@@ -180,163 +384,12 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   }
   const int n_rows = static_cast<int>(det.rows.size());
 
-  // (1) Filter the processed rows; keep the scaled responses.
-  std::vector<int> response(static_cast<std::size_t>(n_rows) * width);
-  std::vector<int> colsum(width);
-  for (int i = 0; i < n_rows; ++i) {
-    PrewittRowScaled(data, width, step, det.rows[i], colsum.data(),
-                     response.data() + static_cast<std::size_t>(i) * width);
-  }
-
-  // (2) "Thresholding to pass top 5%": the (1 - fraction) quantile of |response| over the
-  // processed pixels, found exactly from a histogram (responses are integers x15).
-  std::vector<int> histogram(kMaxScaledResponse + 1, 0);
-  for (int i = 0; i < n_rows; ++i) {
-    const int* row = response.data() + static_cast<std::size_t>(i) * width;
-    for (int c = kHalf; c < width - kHalf; ++c)
-      ++histogram[std::min(std::abs(row[c]), kMaxScaledResponse)];
-  }
-  const long long total = static_cast<long long>(n_rows) * (width - 2 * kHalf);
-  const long long pass_target =
-      static_cast<long long>(std::ceil(params_.threshold_fraction * static_cast<double>(total)));
-  int level_scaled = kMaxScaledResponse;
-  long long passed = 0;
-  while (level_scaled > 0 && passed + histogram[level_scaled] <= pass_target) {
-    passed += histogram[level_scaled];
-    --level_scaled;
-  }
-  // level_scaled is now the largest level whose inclusion would exceed the target; pass
-  // only what is strictly above it, and never below the noise floor.
-  int threshold_scaled = level_scaled + 1;
-  const int floor_scaled =
-      static_cast<int>(std::ceil(params_.min_edge_level * kPrewittScale - 1e-9));
-  threshold_scaled = std::max({threshold_scaled, floor_scaled, 1});
+  const std::vector<int> response = FilterRows(data, width, step, det.rows);
+  const int threshold_scaled = ThresholdScaled(response, n_rows, width, params_);
   det.threshold = static_cast<double>(threshold_scaled) / kPrewittScale;
-
-  // (3) Vertical integral projection V(c) = sum_r I(r, c) of the thresholded response, plus
-  // the count of rows passing in each column bin and the signed sum for polarity.
-  std::vector<double> projection(width, 0.0);
-  std::vector<double> signed_sum(width, 0.0);
-  std::vector<int> nonempty(width, 0);
-  std::vector<std::uint8_t> passed_mask(static_cast<std::size_t>(n_rows) * width, 0);
-  for (int i = 0; i < n_rows; ++i) {
-    const int* row = response.data() + static_cast<std::size_t>(i) * width;
-    std::uint8_t* mask = passed_mask.data() + static_cast<std::size_t>(i) * width;
-    for (int c = kHalf; c < width - kHalf; ++c) {
-      const int a = std::abs(row[c]);
-      if (a < threshold_scaled) continue;
-      mask[c] = 1;
-      projection[c] += static_cast<double>(a) / kPrewittScale;
-      signed_sum[c] += static_cast<double>(row[c]) / kPrewittScale;
-      nonempty[c] = 1;
-    }
-  }
-
-  // (4) Clumping: a window of clump_window_bins bins holding at least clump_min_nonempty
-  // non-empty bins joins its non-empty bins into one clump (§4.1.1).
-  const int win = params_.clump_window_bins;
-  std::vector<int> next_nonempty_linked(width, 0);  // bin c is joined to the next non-empty
-  std::vector<std::uint8_t> member(width, 0);
-  {
-    int count = 0;
-    for (int c = 0; c < std::min(win, width); ++c) count += nonempty[c];
-    for (int s = 0; s + win <= width; ++s) {
-      if (s > 0) count += nonempty[s + win - 1] - nonempty[s - 1];
-      if (count < params_.clump_min_nonempty) continue;
-      int prev = -1;
-      for (int c = s; c < s + win; ++c) {
-        if (!nonempty[c]) continue;
-        member[c] = 1;
-        if (prev >= 0) next_nonempty_linked[prev] = 1;
-        prev = c;
-      }
-    }
-  }
-  double total_strength = 0.0;
-  for (int c = 0; c < width;) {
-    if (!member[c]) {
-      ++c;
-      continue;
-    }
-    Footprint fp;
-    fp.first_bin = c;
-    double polarity = 0.0;
-    int last = c;
-    for (int k = c; k < width; ++k) {
-      if (!nonempty[k]) continue;
-      if (k != c && !next_nonempty_linked[last]) break;
-      fp.strength += projection[k];
-      polarity += signed_sum[k];
-      last = k;
-    }
-    fp.last_bin = last;
-    fp.polarity = polarity >= 0.0 ? 1 : -1;
-    // Location: the centre of mass of the bins in the heaviest clump window (five bins). A
-    // clump can chain several windows (a rolled outer row landing next to the casing's
-    // other edge, §4.1.1 roll); the centre of mass of the whole chain would fall between
-    // edges, while the heaviest window holds the edge the centre rows agree on.
-    int best_start = fp.first_bin;
-    double best_mass = -1.0;
-    for (int s0 = fp.first_bin; s0 <= std::max(fp.first_bin, fp.last_bin - win + 1); ++s0) {
-      double m = 0.0;
-      for (int k = s0; k < s0 + win && k <= fp.last_bin; ++k) m += projection[k];
-      if (m > best_mass) {
-        best_mass = m;
-        best_start = s0;
-      }
-    }
-    double moment = 0.0;
-    double mass = 0.0;
-    for (int k = best_start; k < best_start + win && k <= fp.last_bin; ++k) {
-      moment += k * projection[k];
-      mass += projection[k];
-    }
-    fp.column_px = moment / mass;
-    for (int i = 0; i < n_rows; ++i) {
-      const std::uint8_t* mask = passed_mask.data() + static_cast<std::size_t>(i) * width;
-      for (int k = fp.first_bin; k <= fp.last_bin; ++k) {
-        if (mask[k]) {
-          ++fp.rows_hit;
-          break;
-        }
-      }
-    }
-    total_strength += fp.strength;
-    det.footprints.push_back(fp);
-    c = last + 1;
-  }
-  for (Footprint& fp : det.footprints) fp.weight = fp.strength / total_strength;
-
-  // (5) Candidate pairs. Confidence: the geometric mean of the two footprint weights
-  // (their share of the frame's edge energy), times each footprint's vertical persistence
-  // (share of processed rows it appears in: "ribbon length is a strong indicator of a
-  // large vertical feature", §4.1.1), times a penalty for like polarity.
-  const int n_fp = static_cast<int>(det.footprints.size());
-  for (int i = 0; i < n_fp; ++i) {
-    const Footprint& l = det.footprints[i];
-    for (int j = i + 1; j < n_fp; ++j) {
-      const Footprint& r = det.footprints[j];
-      const double w = r.column_px - l.column_px;
-      if (w < params_.min_pair_width_px || w > params_.max_pair_width_px) continue;
-      CandidatePair pair;
-      pair.left_px = l.column_px;
-      pair.right_px = r.column_px;
-      pair.width_px = w;
-      pair.left_index = i;
-      pair.right_index = j;
-      pair.confidence = std::sqrt(l.weight * r.weight) *
-                        (static_cast<double>(l.rows_hit) / n_rows) *
-                        (static_cast<double>(r.rows_hit) / n_rows) *
-                        (l.polarity != r.polarity ? 1.0 : params_.same_polarity_factor);
-      det.pairs.push_back(pair);
-    }
-  }
-  std::stable_sort(
-      det.pairs.begin(), det.pairs.end(),
-      [](const CandidatePair& a, const CandidatePair& b) { return a.confidence > b.confidence; });
-  if (static_cast<int>(det.pairs.size()) > params_.max_pairs) {
-    det.pairs.resize(params_.max_pairs);
-  }
+  const Projection proj = Project(response, n_rows, width, threshold_scaled);
+  ClumpFootprints(proj, n_rows, width, params_, &det.footprints);
+  PairFootprints(det.footprints, n_rows, params_, &det.pairs);
   return result;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -241,150 +242,203 @@ void CheckOptions(const MapWorldOptions& o) {
   }
 }
 
-// Builds the rings listed in `ring_indices` into one world.
-MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, OppositeWall opposite,
-               const MapWorldOptions& options, std::mt19937_64& rng) {
-  CheckOptions(options);
-  MapWorld out;
-  out.rings = ring_indices;
-  World& world = out.world;
-  world.ceiling_height_in = options.wall_height_in;
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+// A door span whose room is built once every wall is in: the room's back wall is clipped
+// against all of them.
+struct PendingRoom {
+  int wall_index;
+  double s0_in, s1_in;  // door span along the wall, from its a_in end
+};
 
-  struct PendingRoom {
-    int wall_index;
-    double s0_in, s1_in;  // door span along the wall, from its a_in end
-  };
-  std::vector<PendingRoom> rooms;
-  std::vector<std::vector<WallRun>> runs_of_ring;
+// One piece of a run's wall, between its openings (map format 2: gaps the robot passes), as
+// positions along the run (ring order).
+struct WallPiece {
+  int wall_index = -1;  // -1: no piece open
+  double start = 0.0;
+  double end = 0.0;
+};
 
-  for (int r : ring_indices) {
-    const map::Ring& ring = map.ring(r);
-    const std::vector<WallRun> runs = SplitIntoWallRuns(ring);
-    runs_of_ring.push_back(runs);
-    const size_t first_geometry = out.edges.size();
-    out.edges.resize(first_geometry + ring.edges.size());
-    for (const WallRun& run : runs) {
-      const double length = run.length_in;
-      // Position along the run (ring order) of a node: its projection on the run's line.
-      auto along = [&](int node) {
-        return std::clamp((NodePoint(ring, node) - run.start_in).dot(run.dir), 0.0, length);
-      };
-      const std::vector<int> run_edges = RunEdges(ring, run);
-      // The run's wall, in pieces between its openings (map format 2: gaps the robot passes).
-      // Each piece runs against ring order so that the hallway is on its right (world.h).
-      // piece_end: where along the run the current piece ends; -1: no piece open.
-      int wall_index = -1;
-      double piece_start = 0.0, piece_end = 0.0;
-      auto open_piece = [&](size_t from) {
-        piece_start = from == 0 ? 0.0 : along(run_edges[from]);
-        piece_end = length;
-        for (size_t k = from; k < run_edges.size(); ++k) {
-          if (ring.edges[run_edges[k]].IsOpening()) {
-            piece_end = along(run_edges[k]);
-            break;
-          }
-        }
-        wall_index = static_cast<int>(world.walls.size());
-        WallSegment wall;
-        wall.a_in = run.start_in + run.dir * piece_end;
-        wall.b_in = run.start_in + run.dir * piece_start;
-        wall.height_in = options.wall_height_in;
-        wall.surface = options.wall_surface;
-        wall.intensity = options.wall_intensity;
-        world.walls.push_back(wall);
-        out.wall_ring.push_back(r);
-      };
-      for (size_t k = 0; k < run_edges.size(); ++k) {
-        const int e = run_edges[k];
-        const map::Edge& edge = ring.edges[e];
-        const double s0 = along(e);
-        const double s1 = (e == run.last) ? length : along(e + 1);
-        MapEdgeGeometry& g = out.edges[first_geometry + e];
-        g.ref = {r, e};
-        g.start_in = NodePoint(ring, e);
-        g.end_in = NodePoint(ring, e + 1);
-        g.metric_in = edge.metric_in;
-        if (edge.IsOpening()) {
-          wall_index = -1;  // nothing is built across an opening
-          continue;
-        }
-        if (wall_index < 0) open_piece(k);
-        g.wall_index = wall_index;
-        // Centre a feature of width w on the edge's span; in wall coordinates (from a_in).
-        auto wall_offset = [&](double w) {
-          const double centre = 0.5 * (s0 + s1);
-          const double ring_offset =
-              std::clamp(centre - w / 2.0, piece_start, std::max(piece_start, piece_end - w));
-          return piece_end - (ring_offset + w);
-        };
-        const bool door_like = edge.IsDoor() || edge.type == map::EdgeType::kElevator ||
-                               edge.type == map::EdgeType::kStairwell;
-        if (door_like) {
-          DoorFeature door = options.door_template;
-          door.wall_index = wall_index;
-          // The measured opening (map format 2), or the class width (format 1 doors carry it
-          // as their metric).
-          door.width_in = std::min(edge.metric_in, piece_end - piece_start);
-          door.offset_in = wall_offset(door.width_in);
-          door.double_door = door.width_in > kDoubleDoorMinWidthIn;
-          door.pattern = DoorPatternOf(edge.pattern);
-          door.state = DoorState::kClosed;
-          door.open_angle_rad = 0.0;
-          if (edge.IsDoor() && options.open_door_fraction > 0.0) {
-            // Draw all four numbers for every door so a door's state does not depend on
-            // the states before it.
-            const double u_open = unit(rng), u_in = unit(rng), u_angle = unit(rng),
-                         u_hinge = unit(rng);
-            if (u_open < options.open_door_fraction) {
-              door.state = u_in < options.open_inward_share ? DoorState::kOpenInward
-                                                            : DoorState::kOpenOutward;
-              door.open_angle_rad =
-                  DegToRad(options.min_open_angle_deg +
-                           u_angle * (options.max_open_angle_deg - options.min_open_angle_deg));
-              door.hinge_at_start = u_hinge < 0.5;
-            }
-          }
-          g.door_index = static_cast<int>(world.doors.size());
-          world.doors.push_back(door);
-          out.door_edges.push_back({r, e});
-          rooms.push_back({wall_index, door.offset_in, door.offset_in + door.width_in});
-          continue;
-        }
-        if (edge.pattern.empty()) continue;
-        WallDecoration mark;
-        mark.wall_index = wall_index;
-        const double span = std::max(0.0, s1 - s0);
-        if (edge.pattern.find("poster") != std::string::npos) {
-          mark.width_in = std::min(options.poster_width_in, 0.6 * span);
-          mark.intensity = options.poster_intensity;
-        } else if (edge.pattern.find("ribbon") != std::string::npos) {
-          // §6.8: "a single artificial vertical edge ribbon": the whole edge, floor to
-          // door height, dark against the wall.
-          mark.width_in = span;
-          mark.bottom_in = world.baseboard_height_in;
-          mark.top_in = options.door_template.height_in;
-          mark.intensity = options.ribbon_intensity;
-        } else if (edge.pattern.find("window") != std::string::npos &&
-                   edge.pattern.rfind("no_", 0) != 0) {
-          mark.width_in = 0.6 * span;
-          mark.bottom_in = 36.0;
-          mark.top_in = 80.0;
-          mark.intensity = options.window_intensity;
-        } else {
-          continue;  // a mark the camera cannot be told how to draw
-        }
-        if (mark.width_in <= 0.0) continue;
-        mark.offset_in = wall_offset(mark.width_in);
-        world.decorations.push_back(mark);
-      }
+// Position along the run (ring order) of a node: its projection on the run's line.
+double AlongRun(const map::Ring& ring, const WallRun& run, int node) {
+  return std::clamp((NodePoint(ring, node) - run.start_in).dot(run.dir), 0.0, run.length_in);
+}
+
+// Centre a feature of width w on an edge's span [s0, s1] of the piece; in wall coordinates
+// (from a_in).
+double WallOffset(const WallPiece& piece, double s0, double s1, double w) {
+  const double centre = 0.5 * (s0 + s1);
+  const double ring_offset =
+      std::clamp(centre - w / 2.0, piece.start, std::max(piece.start, piece.end - w));
+  return piece.end - (ring_offset + w);
+}
+
+// Edges drawn as a door: doorways, and elevators and stairwells as closed doors.
+bool IsDoorLike(const map::Edge& edge) {
+  return edge.IsDoor() || edge.type == map::EdgeType::kElevator ||
+         edge.type == map::EdgeType::kStairwell;
+}
+
+// The mark a non-door edge's pattern asks for on the piece (Table 6.8 marks, §6.8 ribbon),
+// or none.
+std::optional<WallDecoration> MakeMark(const map::Edge& edge, const WallPiece& piece, double s0,
+                                       double s1, const MapWorldOptions& options,
+                                       double baseboard_height_in) {
+  if (edge.pattern.empty()) return std::nullopt;
+  WallDecoration mark;
+  mark.wall_index = piece.wall_index;
+  const double span = std::max(0.0, s1 - s0);
+  if (edge.pattern.find("poster") != std::string::npos) {
+    mark.width_in = std::min(options.poster_width_in, 0.6 * span);
+    mark.intensity = options.poster_intensity;
+  } else if (edge.pattern.find("ribbon") != std::string::npos) {
+    // §6.8: "a single artificial vertical edge ribbon": the whole edge, floor to
+    // door height, dark against the wall.
+    mark.width_in = span;
+    mark.bottom_in = baseboard_height_in;
+    mark.top_in = options.door_template.height_in;
+    mark.intensity = options.ribbon_intensity;
+  } else if (edge.pattern.find("window") != std::string::npos &&
+             edge.pattern.rfind("no_", 0) != 0) {
+    mark.width_in = 0.6 * span;
+    mark.bottom_in = 36.0;
+    mark.top_in = 80.0;
+    mark.intensity = options.window_intensity;
+  } else {
+    return std::nullopt;  // a mark the camera cannot be told how to draw
+  }
+  if (mark.width_in <= 0.0) return std::nullopt;
+  mark.offset_in = WallOffset(piece, s0, s1, mark.width_in);
+  return mark;
+}
+
+// Adds the rings' own walls, with their doors and marks, to a MapWorld (Build's first step)
+// and keeps the door spans whose rooms come last. Door states are drawn from one
+// distribution over `rng`, in ring and edge order.
+class RingBuilder {
+ public:
+  RingBuilder(const MapWorldOptions& options, std::mt19937_64& rng, MapWorld* out)
+      : options_(options), rng_(rng), out_(out) {}
+
+  // Ring r, split into `runs`: each run becomes one wall, in pieces between its openings.
+  void AddRing(const map::Ring& ring, int r, const std::vector<WallRun>& runs);
+
+  const std::vector<PendingRoom>& rooms() const { return rooms_; }
+
+ private:
+  // One run: its wall pieces, doors and marks, and the geometry of its edges (from
+  // out_->edges[first_geometry], the ring's first).
+  void AddRun(const map::Ring& ring, int r, const WallRun& run, size_t first_geometry);
+  WallPiece OpenPiece(const map::Ring& ring, int r, const WallRun& run,
+                      const std::vector<int>& run_edges, size_t from);
+  // A door (elevators and stairwells too) centred on its edge's span [s0, s1] of the piece.
+  DoorFeature MakeDoor(const map::Edge& edge, const WallPiece& piece, double s0, double s1);
+  // Opens a doorway with the odds of MapWorldOptions.
+  void DrawDoorState(DoorFeature* door);
+
+  const MapWorldOptions& options_;
+  std::mt19937_64& rng_;
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+  MapWorld* out_;
+  std::vector<PendingRoom> rooms_;
+};
+
+void RingBuilder::AddRing(const map::Ring& ring, int r, const std::vector<WallRun>& runs) {
+  const size_t first_geometry = out_->edges.size();
+  out_->edges.resize(first_geometry + ring.edges.size());
+  for (const WallRun& run : runs) AddRun(ring, r, run, first_geometry);
+}
+
+void RingBuilder::AddRun(const map::Ring& ring, int r, const WallRun& run, size_t first_geometry) {
+  World& world = out_->world;
+  const std::vector<int> run_edges = RunEdges(ring, run);
+  WallPiece piece;
+  for (size_t k = 0; k < run_edges.size(); ++k) {
+    const int e = run_edges[k];
+    const map::Edge& edge = ring.edges[e];
+    const double s0 = AlongRun(ring, run, e);
+    const double s1 = (e == run.last) ? run.length_in : AlongRun(ring, run, e + 1);
+    MapEdgeGeometry& g = out_->edges[first_geometry + e];
+    g.ref = {r, e};
+    g.start_in = NodePoint(ring, e);
+    g.end_in = NodePoint(ring, e + 1);
+    g.metric_in = edge.metric_in;
+    if (edge.IsOpening()) {
+      piece.wall_index = -1;  // nothing is built across an opening
+      continue;
+    }
+    if (piece.wall_index < 0) piece = OpenPiece(ring, r, run, run_edges, k);
+    g.wall_index = piece.wall_index;
+    if (IsDoorLike(edge)) {
+      const DoorFeature door = MakeDoor(edge, piece, s0, s1);
+      g.door_index = static_cast<int>(world.doors.size());
+      world.doors.push_back(door);
+      out_->door_edges.push_back({r, e});
+      rooms_.push_back({piece.wall_index, door.offset_in, door.offset_in + door.width_in});
+      continue;
+    }
+    const std::optional<WallDecoration> mark =
+        MakeMark(edge, piece, s0, s1, options_, world.baseboard_height_in);
+    if (mark) world.decorations.push_back(*mark);
+  }
+}
+
+// The piece from run edge `from` to the next opening (or the run's end). It runs against
+// ring order so that the hallway is on its right (world.h).
+WallPiece RingBuilder::OpenPiece(const map::Ring& ring, int r, const WallRun& run,
+                                 const std::vector<int>& run_edges, size_t from) {
+  WallPiece piece;
+  piece.start = from == 0 ? 0.0 : AlongRun(ring, run, run_edges[from]);
+  piece.end = run.length_in;
+  for (size_t k = from; k < run_edges.size(); ++k) {
+    if (ring.edges[run_edges[k]].IsOpening()) {
+      piece.end = AlongRun(ring, run, run_edges[k]);
+      break;
     }
   }
+  piece.wall_index = static_cast<int>(out_->world.walls.size());
+  WallSegment wall;
+  wall.a_in = run.start_in + run.dir * piece.end;
+  wall.b_in = run.start_in + run.dir * piece.start;
+  wall.height_in = options_.wall_height_in;
+  wall.surface = options_.wall_surface;
+  wall.intensity = options_.wall_intensity;
+  out_->world.walls.push_back(wall);
+  out_->wall_ring.push_back(r);
+  return piece;
+}
 
-  // The opposite hallway walls: parallel to each ring at the hallway width. A shallow step
-  // of the mapped wall (a pilaster, an alcove) is that wall's own: the opposite wall runs
-  // straight past it.
-  // Obstacles (columns, piers): closed outlines, faces outward.
+DoorFeature RingBuilder::MakeDoor(const map::Edge& edge, const WallPiece& piece, double s0,
+                                  double s1) {
+  DoorFeature door = options_.door_template;
+  door.wall_index = piece.wall_index;
+  // The measured opening (map format 2), or the class width (format 1 doors carry it
+  // as their metric).
+  door.width_in = std::min(edge.metric_in, piece.end - piece.start);
+  door.offset_in = WallOffset(piece, s0, s1, door.width_in);
+  door.double_door = door.width_in > kDoubleDoorMinWidthIn;
+  door.pattern = DoorPatternOf(edge.pattern);
+  door.state = DoorState::kClosed;
+  door.open_angle_rad = 0.0;
+  if (edge.IsDoor() && options_.open_door_fraction > 0.0) DrawDoorState(&door);
+  return door;
+}
+
+void RingBuilder::DrawDoorState(DoorFeature* door) {
+  // Draw all four numbers for every door so a door's state does not depend on
+  // the states before it.
+  const double u_open = unit_(rng_), u_in = unit_(rng_), u_angle = unit_(rng_),
+               u_hinge = unit_(rng_);
+  if (u_open < options_.open_door_fraction) {
+    door->state =
+        u_in < options_.open_inward_share ? DoorState::kOpenInward : DoorState::kOpenOutward;
+    door->open_angle_rad =
+        DegToRad(options_.min_open_angle_deg +
+                 u_angle * (options_.max_open_angle_deg - options_.min_open_angle_deg));
+    door->hinge_at_start = u_hinge < 0.5;
+  }
+}
+
+// Obstacles (columns, piers): closed outlines, faces outward.
+void AddObstacleWalls(const map::Map& map, const MapWorldOptions& options, MapWorld* out) {
   for (const map::Obstacle& o : map.obstacles()) {
     const size_t n = o.polygon_in.size();
     double area2 = 0.0;
@@ -403,11 +457,18 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, Opposi
       wall.height_in = options.wall_height_in;
       wall.surface = options.wall_surface;
       wall.intensity = options.wall_intensity;
-      world.walls.push_back(wall);
-      out.wall_ring.push_back(-1);
+      out->world.walls.push_back(wall);
+      out->wall_ring.push_back(-1);
     }
   }
+}
 
+// The opposite hallway walls: parallel to each ring at the hallway width. A shallow step
+// of the mapped wall (a pilaster, an alcove) is that wall's own: the opposite wall runs
+// straight past it. `runs_of_ring[k]` are the runs of ring ring_indices[k].
+void AddOppositeWalls(const map::Map& map, const std::vector<int>& ring_indices,
+                      const std::vector<std::vector<WallRun>>& runs_of_ring, OppositeWall opposite,
+                      const MapWorldOptions& options, MapWorld* out) {
   // Only side rings face a wall that is not in the map; a corridor outline has both sides.
   for (size_t k = 0; k < ring_indices.size(); ++k) {
     const map::Ring& ring = map.ring(ring_indices[k]);
@@ -416,26 +477,28 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, Opposi
                       (opposite == OppositeWall::kAuto &&
                        (ring_indices.size() == 1 || ring.width_in.has_value())));
     if (!add) continue;
-    {
-      const double width = ring.width_in.value_or(options.hallway_width_in);
-      const std::vector<WallRun> straight =
-          WithoutSteps(runs_of_ring[k], ring.closed, options.opposite_wall_max_step_in);
-      for (const OffsetSegment& s : OffsetRuns(straight, ring.closed, width)) {
-        // In ring order the mapped wall is on this wall's right: the hallway is there.
-        WallSegment wall;
-        wall.a_in = s.a_in;
-        wall.b_in = s.b_in;
-        wall.height_in = options.wall_height_in;
-        wall.surface = options.opposite_surface;
-        wall.intensity = options.opposite_wall_intensity;
-        world.walls.push_back(wall);
-        out.wall_ring.push_back(-1);
-        ++out.opposite_wall_count;
-      }
+    const double width = ring.width_in.value_or(options.hallway_width_in);
+    const std::vector<WallRun> straight =
+        WithoutSteps(runs_of_ring[k], ring.closed, options.opposite_wall_max_step_in);
+    for (const OffsetSegment& s : OffsetRuns(straight, ring.closed, width)) {
+      // In ring order the mapped wall is on this wall's right: the hallway is there.
+      WallSegment wall;
+      wall.a_in = s.a_in;
+      wall.b_in = s.b_in;
+      wall.height_in = options.wall_height_in;
+      wall.surface = options.opposite_surface;
+      wall.intensity = options.opposite_wall_intensity;
+      out->world.walls.push_back(wall);
+      out->wall_ring.push_back(-1);
+      ++out->opposite_wall_count;
     }
   }
+}
 
-  // Back walls of the rooms behind the doors, clipped against every mapped wall behind.
+// Back walls of the rooms behind the doors, clipped against every mapped wall behind.
+void AddRoomBackWalls(const std::vector<PendingRoom>& rooms, const MapWorldOptions& options,
+                      MapWorld* out) {
+  World& world = out->world;
   for (const PendingRoom& room : rooms) {
     const WallSegment wall = world.walls[room.wall_index];
     const Eigen::Vector2d d = (wall.b_in - wall.a_in).normalized();
@@ -445,7 +508,7 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, Opposi
     double depth = options.room_depth_in;
     for (double s : {s0, 0.5 * (s0 + s1), s1}) {
       const Eigen::Vector2d origin = wall.a_in + d * s + into_room * 0.5;
-      for (const MapEdgeGeometry& g : out.edges) {
+      for (const MapEdgeGeometry& g : out->edges) {
         if (g.wall_index == room.wall_index) continue;
         depth = std::min(
             depth, RayToSegment(origin, into_room, g.start_in, g.end_in) + 0.5 - kRoomClearanceIn);
@@ -459,8 +522,27 @@ MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, Opposi
     back.surface = options.wall_surface;
     back.intensity = options.room_wall_intensity;
     world.walls.push_back(back);
-    out.wall_ring.push_back(-1);
+    out->wall_ring.push_back(-1);
   }
+}
+
+// Builds the rings listed in `ring_indices` into one world.
+MapWorld Build(const map::Map& map, const std::vector<int>& ring_indices, OppositeWall opposite,
+               const MapWorldOptions& options, std::mt19937_64& rng) {
+  CheckOptions(options);
+  MapWorld out;
+  out.rings = ring_indices;
+  out.world.ceiling_height_in = options.wall_height_in;
+  RingBuilder builder(options, rng, &out);
+  std::vector<std::vector<WallRun>> runs_of_ring;
+  for (int r : ring_indices) {
+    const map::Ring& ring = map.ring(r);
+    runs_of_ring.push_back(SplitIntoWallRuns(ring));
+    builder.AddRing(ring, r, runs_of_ring.back());
+  }
+  AddObstacleWalls(map, options, &out);
+  AddOppositeWalls(map, ring_indices, runs_of_ring, opposite, options, &out);
+  AddRoomBackWalls(builder.rooms(), options, &out);
   return out;
 }
 
