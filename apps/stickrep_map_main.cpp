@@ -6,7 +6,7 @@
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
-#include "stickrep/map_tool.h"
+#include "map_tool/map_tool.h"
 
 int main(int argc, char** argv) {
   namespace tool = stickrep::map::tool;

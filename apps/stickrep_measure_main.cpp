@@ -10,7 +10,7 @@
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
-#include "measure/error_measurement.h"
+#include "measure_tool/error_measurement.h"
 #include "sensing/robot_config.h"
 #include "common/config_paths.h"
 #include "stickrep/map_io.h"

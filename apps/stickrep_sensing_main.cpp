@@ -8,7 +8,7 @@
 #include "common/input_error.h"
 #include "common/tool_main.h"
 #include "sensing/robot_config.h"
-#include "sensing/sensing_report.h"
+#include "sensing_tool/sensing_report.h"
 
 int main(int argc, char** argv) {
   using namespace stickrep::sensing;

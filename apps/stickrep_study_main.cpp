@@ -6,7 +6,7 @@
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
-#include "recovery/study_report.h"
+#include "study_tool/study_report.h"
 
 int main(int argc, char** argv) {
   stickrep::recovery::report::ToolOptions o;

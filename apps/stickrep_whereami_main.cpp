@@ -6,7 +6,7 @@
 
 #include "common/input_error.h"
 #include "common/tool_main.h"
-#include "whereami/whereami_report.h"
+#include "whereami_tool/whereami_report.h"
 
 int main(int argc, char** argv) {
   stickrep::whereami::ToolOptions o;

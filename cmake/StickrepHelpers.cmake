@@ -48,3 +48,12 @@ function(stickrep_add_program name)
   target_compile_definitions(${name} PRIVATE STICKREP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
+
+# stickrep_add_tool_library(NAME SOURCES ... [DEPS ...])
+# A tool's library (reports, generators, study runners) in tools/: its headers are included
+# as "<folder>/<file>.h" from tools/; the algorithm libraries it uses come through DEPS.
+function(stickrep_add_tool_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  stickrep_add_library(${name} SOURCES ${ARG_SOURCES} DEPS ${ARG_DEPS})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR}/tools)
+endfunction()

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "stickrep/map_render.h"
+#include "plot/map_render.h"
 
 namespace stickrep::console {
 

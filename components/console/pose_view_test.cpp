@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "stickrep/map_render.h"
+#include "plot/map_render.h"
 
 namespace stickrep::console {
 namespace {

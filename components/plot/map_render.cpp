@@ -1,4 +1,4 @@
-#include "stickrep/map_render.h"
+#include "plot/map_render.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,9 +31,23 @@ void DrawPose(cv::Mat& img, const cv::Point& p, const PoseOverlay& pose) {
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
 }
 
-}  // namespace
+constexpr int kMarginPx = 40, kLegendPx = 70;
 
-void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& options) {
+// Building inches to image pixels: the map's bounding box fitted to the image width between
+// margins, y upwards (image rows grow downwards), the legend strip below.
+struct MapToImage {
+  double min_x = 0.0, min_y = 0.0;
+  double scale = 1.0;  // px per inch
+  int height = 0;
+  cv::Point At(double x_in, double y_in) const {
+    return cv::Point(
+        static_cast<int>(std::lround(kMarginPx + (x_in - min_x) * scale)),
+        static_cast<int>(std::lround(height - kLegendPx - kMarginPx - (y_in - min_y) * scale)));
+  }
+  cv::Point At(const Node& n) const { return At(n.x_in, n.y_in); }
+};
+
+MapToImage FitMap(const Map& map, int width_px) {
   double min_x = std::numeric_limits<double>::max(), min_y = min_x;
   double max_x = std::numeric_limits<double>::lowest(), max_y = max_x;
   for (const Ring& ring : map.rings()) {
@@ -44,52 +58,55 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
       max_y = std::max(max_y, n.y_in);
     }
   }
-  const int margin = 40, legend = 70;
   const double span_x = std::max(1.0, max_x - min_x), span_y = std::max(1.0, max_y - min_y);
-  const double scale = (options.width_px - 2.0 * margin) / span_x;  // px per inch
-  const int height = std::clamp(static_cast<int>(span_y * scale) + 2 * margin + legend, 200, 6000);
-  cv::Mat img(height, options.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
-  auto px = [&](const Node& n) {
-    return cv::Point(
-        static_cast<int>(std::lround(margin + (n.x_in - min_x) * scale)),
-        static_cast<int>(std::lround(height - legend - margin - (n.y_in - min_y) * scale)));
-  };
+  MapToImage to_px;
+  to_px.min_x = min_x;
+  to_px.min_y = min_y;
+  to_px.scale = (width_px - 2.0 * kMarginPx) / span_x;
+  to_px.height =
+      std::clamp(static_cast<int>(span_y * to_px.scale) + 2 * kMarginPx + kLegendPx, 200, 6000);
+  return to_px;
+}
+
+// Joins first, so that the rings are drawn over them.
+void DrawRings(cv::Mat& img, const Map& map, const MapToImage& to_px, bool label_rings) {
   for (const Join& j : map.joins()) {
     const Ring& a = map.ring(map.FindRing(j.ring));
     const Ring& b = map.ring(map.FindRing(j.to_ring));
-    cv::line(img, px(a.nodes[j.node]), px(b.nodes[j.to_node]), kJoinColour, 1, cv::LINE_AA);
+    cv::line(img, to_px.At(a.nodes[j.node]), to_px.At(b.nodes[j.to_node]), kJoinColour, 1,
+             cv::LINE_AA);
   }
-  const int door_px = std::max(3, static_cast<int>(std::lround(6.0 * scale)));
+  const int door_px = std::max(3, static_cast<int>(std::lround(6.0 * to_px.scale)));
   for (const Ring& ring : map.rings()) {
     for (int i = 0; i < ring.EdgeCount(); ++i) {
-      const Node& a = ring.nodes[i];
-      const Node& b = ring.nodes[(i + 1) % ring.NodeCount()];
+      const cv::Point a = to_px.At(ring.nodes[i]);
+      const cv::Point b = to_px.At(ring.nodes[(i + 1) % ring.NodeCount()]);
       const Edge& e = ring.edges[i];
       if (e.IsDoor()) {
-        cv::line(img, px(a), px(b), kDoorColours[static_cast<int>(*e.door_class)], door_px,
-                 cv::LINE_8);
+        cv::line(img, a, b, kDoorColours[static_cast<int>(*e.door_class)], door_px, cv::LINE_8);
       } else if (e.IsWall()) {
-        cv::line(img, px(a), px(b), kWallColour, 1, cv::LINE_AA);
+        cv::line(img, a, b, kWallColour, 1, cv::LINE_AA);
       } else {
-        cv::line(img, px(a), px(b), kOtherColour, door_px, cv::LINE_8);
+        cv::line(img, a, b, kOtherColour, door_px, cv::LINE_8);
       }
     }
     for (const Node& n : ring.nodes) {
-      if (n.artificial) cv::circle(img, px(n), 6, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+      if (n.artificial) cv::circle(img, to_px.At(n), 6, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
     }
-    if (options.label_rings) {
-      cv::putText(img, ring.id, px(ring.nodes[0]) + cv::Point(8, 16), cv::FONT_HERSHEY_SIMPLEX,
-                  0.45, cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
+    if (label_rings) {
+      cv::putText(img, ring.id, to_px.At(ring.nodes[0]) + cv::Point(8, 16),
+                  cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
     }
   }
-  auto px_at = [&](double x_in, double y_in) {
-    return cv::Point(static_cast<int>(std::lround(margin + (x_in - min_x) * scale)),
-                     static_cast<int>(std::lround(height - legend - margin - (y_in - min_y) * scale)));
-  };
+}
+
+// What is drawn over the map: obstacles, then paths, markers and poses in that order.
+void DrawOverlays(cv::Mat& img, const Map& map, const MapToImage& to_px,
+                  const RenderOptions& options) {
   // Obstacles (columns, piers): filled grey.
   for (const Obstacle& o : map.obstacles()) {
     std::vector<cv::Point> corners;
-    for (const auto& c : o.polygon_in) corners.push_back(px_at(c[0], c[1]));
+    for (const auto& c : o.polygon_in) corners.push_back(to_px.At(c[0], c[1]));
     cv::fillPoly(img, std::vector<std::vector<cv::Point>>{corners}, cv::Scalar(150, 150, 150),
                  cv::LINE_AA);
   }
@@ -97,20 +114,23 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
     for (size_t i = 1; i < path_overlay.points_in.size(); ++i) {
       const auto& a = path_overlay.points_in[i - 1];
       const auto& b = path_overlay.points_in[i];
-      cv::line(img, px_at(a.first, a.second), px_at(b.first, b.second), cv::Scalar(0, 0, 220), 2,
-               cv::LINE_AA);
+      cv::line(img, to_px.At(a.first, a.second), to_px.At(b.first, b.second), cv::Scalar(0, 0, 220),
+               2, cv::LINE_AA);
     }
   }
   for (const MarkerOverlay& m : options.markers) {
-    const cv::Point p = px_at(m.x_in, m.y_in);
+    const cv::Point p = to_px.At(m.x_in, m.y_in);
     cv::circle(img, p, 7, cv::Scalar(0, 140, 0), cv::FILLED, cv::LINE_AA);
     cv::putText(img, m.label, {p.x + 10, p.y - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
                 cv::Scalar(0, 100, 0), 1, cv::LINE_AA);
   }
-  for (const PoseOverlay& pose : options.poses) DrawPose(img, px_at(pose.x_in, pose.y_in), pose);
-  // Legend and scale bar.
-  int x = margin;
-  const int y = height - legend / 2;
+  for (const PoseOverlay& pose : options.poses) DrawPose(img, to_px.At(pose.x_in, pose.y_in), pose);
+}
+
+// Legend and scale bar, along the strip below the map.
+void DrawLegend(cv::Mat& img, const MapToImage& to_px) {
+  int x = kMarginPx;
+  const int y = to_px.height - kLegendPx / 2;
   for (int k = 0; k < kDoorClassCount; ++k) {
     cv::line(img, {x, y}, {x + 30, y}, kDoorColours[k], 6);
     cv::putText(img, std::string("door ") + DoorClassName(static_cast<DoorClass>(k)),
@@ -132,12 +152,22 @@ void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& 
   x += 230;
   // A scale bar of a round number of feet.
   double bar_ft = 10;
-  while (bar_ft * 12 * scale < 80) bar_ft *= 2;
-  const int bar_px = static_cast<int>(bar_ft * 12 * scale);
+  while (bar_ft * 12 * to_px.scale < 80) bar_ft *= 2;
+  const int bar_px = static_cast<int>(bar_ft * 12 * to_px.scale);
   cv::line(img, {x, y}, {x + bar_px, y}, cv::Scalar(0, 0, 0), 2);
   cv::putText(img, cv::format("%.0f ft", bar_ft), {x + bar_px + 6, y + 5}, cv::FONT_HERSHEY_SIMPLEX,
               0.5, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
-  cv::putText(img, map.info().name, {margin, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.7,
+}
+
+}  // namespace
+
+void RenderMapPng(const Map& map, const std::string& path, const RenderOptions& options) {
+  const MapToImage to_px = FitMap(map, options.width_px);
+  cv::Mat img(to_px.height, options.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  DrawRings(img, map, to_px, options.label_rings);
+  DrawOverlays(img, map, to_px, options);
+  DrawLegend(img, to_px);
+  cv::putText(img, map.info().name, {kMarginPx, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.7,
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   if (!cv::imwrite(path, img)) throw std::runtime_error("cannot write " + path);
 }

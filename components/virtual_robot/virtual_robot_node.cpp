@@ -14,7 +14,7 @@
 #include "sensing/robot_config.h"
 #include "sensorsPubSubTypes.h"
 #include "stickrep/map_io.h"
-#include "stickrep/map_render.h"
+#include "plot/map_render.h"
 #include "systemPubSubTypes.h"
 #include "virtual_robot/replay_robot_node.h"
 #include "virtual_robot/virtual_robot_config.h"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "common/units.h"
-#include "stickrep/floor_plan.h"
+#include "map_tool/floor_plan.h"
 
 namespace stickrep::virtual_robot {
 namespace {

@@ -1,4 +1,4 @@
-#include "stickrep/ambiguity_report.h"
+#include "map_tool/ambiguity_report.h"
 
 #include <fmt/format.h>
 

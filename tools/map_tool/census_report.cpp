@@ -1,4 +1,4 @@
-#include "stickrep/census_report.h"
+#include "map_tool/census_report.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "stickrep/floor_plan.h"
+#include "map_tool/floor_plan.h"
 
 #include <gtest/gtest.h>
 

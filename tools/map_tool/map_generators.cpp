@@ -1,4 +1,4 @@
-#include "stickrep/map_generators.h"
+#include "map_tool/map_generators.h"
 
 #include <algorithm>
 #include <array>
@@ -728,16 +728,32 @@ class EngineeringBuilder {
 // Wells Hall, seventh floor.
 // ---------------------------------------------------------------------------------------
 
-}  // namespace
+// The major ring's sides are numbered from 0 by the 270° corners that start them.
+double WellsSideLength(const std::vector<Item>& major, int side) {
+  double len = 0;
+  int s = -1;
+  for (std::size_t i = 0; i < major.size(); ++i) {
+    if (major[i].angle_deg == 270.0) ++s;
+    if (s == side) len += major[i].edge.metric_in;
+  }
+  return len;
+}
 
-Map GenerateEngineeringBuilding(std::uint64_t seed) { return EngineeringBuilder(seed).Build(); }
+std::size_t WellsLastOfSide(const std::vector<Item>& major, int side) {
+  int s = -1;
+  std::size_t last = 0;
+  for (std::size_t i = 0; i < major.size(); ++i) {
+    if (major[i].angle_deg == 270.0) ++s;
+    if (s == side) last = i;
+  }
+  return last;
+}
 
-Map GenerateWellsHall(std::uint64_t seed, bool modified) {
-  Rng rng(seed);
-  // The corridor loop's outer wall is the major ring: four sides of office modules (a 36 in
-  // door and an 84 in wall, 10 ft on centre), walked counter-clockwise (concave corners).
-  // The corner walls differ from corner to corner (the building is not symmetric), and one
-  // double door on a long side is the single reference landmark (§6.8).
+// The corridor loop's outer wall is the major ring: four sides of office modules (a 36 in
+// door and an 84 in wall, 10 ft on centre), walked counter-clockwise (concave corners).
+// The corner walls differ from corner to corner (the building is not symmetric), and one
+// double door on a long side is the single reference landmark (§6.8).
+std::vector<Item> WellsMajorRing(Rng& rng) {
   const int long_modules = 14, short_modules = 7;
   const double module_wall = 84.0;
   std::vector<Item> major;
@@ -764,37 +780,19 @@ Map GenerateWellsHall(std::uint64_t seed, bool modified) {
   }
   // Side lengths must close the rectangle: add the difference to the last wall of the
   // shorter side of each opposite pair.
-  auto side_length = [&](int side) {
-    double len = 0;
-    int s = -1;
-    for (std::size_t i = 0; i < major.size(); ++i) {
-      if (major[i].angle_deg == 270.0) ++s;
-      if (s == side) len += major[i].edge.metric_in;
-    }
-    return len;
-  };
-  auto last_of_side = [&](int side) {
-    int s = -1;
-    std::size_t last = 0;
-    for (std::size_t i = 0; i < major.size(); ++i) {
-      if (major[i].angle_deg == 270.0) ++s;
-      if (s == side) last = i;
-    }
-    return last;
-  };
   for (int s = 0; s < 2; ++s) {
-    const double d = side_length(s) - side_length(s + 2);
-    if (d > 0) major[last_of_side(s + 2)].edge.metric_in += d;
-    if (d < 0) major[last_of_side(s)].edge.metric_in -= d;
+    const double d = WellsSideLength(major, s) - WellsSideLength(major, s + 2);
+    if (d > 0) major[WellsLastOfSide(major, s + 2)].edge.metric_in += d;
+    if (d < 0) major[WellsLastOfSide(major, s)].edge.metric_in -= d;
   }
-  const double outer_w = side_length(0), outer_h = side_length(1);
+  return major;
+}
 
-  // The core inside the loop: inner offices on the same kind of module (a 36 in door and a
-  // 96 in wall) with a few odd doors among them (toilets behind a 30/30 double door, a store
-  // room, a plant room); walked clockwise (convex corners). The first and last wall of each
-  // side take up what the modules leave.
-  const double hall = 96.0;
-  const double core_w = outer_w - 2 * hall, core_h = outer_h - 2 * hall;
+// The core inside the loop: inner offices on the same kind of module (a 36 in door and a
+// 96 in wall) with a few odd doors among them (toilets behind a 30/30 double door, a store
+// room, a plant room); walked clockwise (convex corners). The first and last wall of each
+// side take up what the modules leave.
+std::vector<Item> WellsCore(Rng& rng, double core_w, double core_h) {
   const double core_module_wall = 96.0;
   std::vector<Item> core;
   const std::array<double, 4> core_sides = {core_w, core_h, core_w, core_h};
@@ -820,50 +818,66 @@ Map GenerateWellsHall(std::uint64_t seed, bool modified) {
   }
   // The core is joined to the loop at an artificial node at its first corner.
   core[0].artificial = true;
+  return core;
+}
 
-  if (modified) {
-    // One artificial ribbon at the major-ring edge farthest (along the ring) from the
-    // landmark: the wall there is split and a 24 in painted ribbon put in its middle.
-    std::size_t landmark = 0;
-    for (std::size_t i = 0; i < major.size(); ++i) {
-      if (major[i].edge.IsDoor() && *major[i].edge.door_class == DoorClass::k36_36) landmark = i;
-    }
-    double total = 0;
-    for (const Item& it : major) total += it.edge.metric_in;
-    std::vector<double> start(major.size());
-    double acc = 0;
-    for (std::size_t i = 0; i < major.size(); ++i) {
-      start[i] = acc;
-      acc += major[i].edge.metric_in;
-    }
-    const double landmark_mid = start[landmark] + 0.5 * major[landmark].edge.metric_in;
-    std::size_t far = 0;
-    double far_d = -1;
-    for (std::size_t i = 0; i < major.size(); ++i) {
-      if (!major[i].edge.IsWall() || major[i].edge.metric_in < 48.0) continue;
-      const double mid = start[i] + 0.5 * major[i].edge.metric_in;
-      const double d = std::min(std::abs(mid - landmark_mid), total - std::abs(mid - landmark_mid));
-      if (d > far_d) {
-        far_d = d;
-        far = i;
-      }
-    }
-    const double ribbon = 24.0;
-    const double wall = major[far].edge.metric_in;
-    const double left = std::floor((wall - ribbon) / 2);
-    Item a = major[far], rib = major[far], b = major[far];
-    a.edge = Edge::Wall(left);
-    rib.angle_deg = 180.0;
-    rib.edge = Edge{};
-    rib.edge.type = EdgeType::kPattern;
-    rib.edge.prototype = Prototype::kPattern;
-    rib.edge.metric_in = ribbon;
-    rib.edge.pattern = "artificial_ribbon";
-    b.angle_deg = 180.0;
-    b.edge = Edge::Wall(wall - ribbon - left);
-    major[far] = a;
-    major.insert(major.begin() + static_cast<long>(far) + 1, {rib, b});
+// The modified Wells Hall: one artificial ribbon at the major-ring edge farthest (along the
+// ring) from the landmark: the wall there is split and a 24 in painted ribbon put in its
+// middle.
+void AddArtificialRibbon(std::vector<Item>& major) {
+  std::size_t landmark = 0;
+  for (std::size_t i = 0; i < major.size(); ++i) {
+    if (major[i].edge.IsDoor() && *major[i].edge.door_class == DoorClass::k36_36) landmark = i;
   }
+  double total = 0;
+  for (const Item& it : major) total += it.edge.metric_in;
+  std::vector<double> start(major.size());
+  double acc = 0;
+  for (std::size_t i = 0; i < major.size(); ++i) {
+    start[i] = acc;
+    acc += major[i].edge.metric_in;
+  }
+  const double landmark_mid = start[landmark] + 0.5 * major[landmark].edge.metric_in;
+  std::size_t far = 0;
+  double far_d = -1;
+  for (std::size_t i = 0; i < major.size(); ++i) {
+    if (!major[i].edge.IsWall() || major[i].edge.metric_in < 48.0) continue;
+    const double mid = start[i] + 0.5 * major[i].edge.metric_in;
+    const double d = std::min(std::abs(mid - landmark_mid), total - std::abs(mid - landmark_mid));
+    if (d > far_d) {
+      far_d = d;
+      far = i;
+    }
+  }
+  const double ribbon = 24.0;
+  const double wall = major[far].edge.metric_in;
+  const double left = std::floor((wall - ribbon) / 2);
+  Item a = major[far], rib = major[far], b = major[far];
+  a.edge = Edge::Wall(left);
+  rib.angle_deg = 180.0;
+  rib.edge = Edge{};
+  rib.edge.type = EdgeType::kPattern;
+  rib.edge.prototype = Prototype::kPattern;
+  rib.edge.metric_in = ribbon;
+  rib.edge.pattern = "artificial_ribbon";
+  b.angle_deg = 180.0;
+  b.edge = Edge::Wall(wall - ribbon - left);
+  major[far] = a;
+  major.insert(major.begin() + static_cast<long>(far) + 1, {rib, b});
+}
+
+}  // namespace
+
+Map GenerateEngineeringBuilding(std::uint64_t seed) { return EngineeringBuilder(seed).Build(); }
+
+Map GenerateWellsHall(std::uint64_t seed, bool modified) {
+  Rng rng(seed);
+  std::vector<Item> major = WellsMajorRing(rng);
+  const double outer_w = WellsSideLength(major, 0), outer_h = WellsSideLength(major, 1);
+  const double hall = 96.0;
+  const double core_w = outer_w - 2 * hall, core_h = outer_h - 2 * hall;
+  const std::vector<Item> core = WellsCore(rng, core_w, core_h);
+  if (modified) AddArtificialRibbon(major);
 
   std::vector<Ring> rings;
   rings.push_back(BuildRing("corridor_outer", true, major, 0.0, 0.0, 0.0));

@@ -1,17 +1,17 @@
-#include "stickrep/map_tool.h"
+#include "map_tool/map_tool.h"
 
 #include <chrono>
 #include <ostream>
 #include <stdexcept>
 
 #include "common/input_error.h"
-#include "stickrep/ambiguity_report.h"
+#include "map_tool/ambiguity_report.h"
 #include "stickrep/census.h"
-#include "stickrep/census_report.h"
-#include "stickrep/floor_plan.h"
-#include "stickrep/map_generators.h"
+#include "map_tool/census_report.h"
+#include "map_tool/floor_plan.h"
+#include "map_tool/map_generators.h"
 #include "stickrep/map_io.h"
-#include "stickrep/map_render.h"
+#include "plot/map_render.h"
 
 namespace stickrep::map::tool {
 

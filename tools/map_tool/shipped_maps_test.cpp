@@ -8,7 +8,7 @@
 
 #include "stickrep/ambiguity.h"
 #include "stickrep/census.h"
-#include "stickrep/map_generators.h"
+#include "map_tool/map_generators.h"
 #include "stickrep/map_io.h"
 #include "stickrep/paper_reference.h"
 

@@ -1,4 +1,4 @@
-#include "measure/error_measurement.h"
+#include "measure_tool/error_measurement.h"
 
 #include <algorithm>
 #include <chrono>
@@ -202,20 +202,32 @@ Placement Place(const Setup& s, const RingWorld& rw, const world::Scene& scene, 
   return {};
 }
 
-FrameResult RunFrame(const Setup& s, std::uint64_t index) {
+// What a frame draws before the camera is placed: its world, its offsets from the hallway
+// axis, the camera's roll and the light.
+struct FrameDraw {
+  const RingWorld* ring = nullptr;
+  const world::Scene* scene = nullptr;
+  double lateral_in = 0.0;
+  double stare_deg = 0.0;
+  std::size_t roll_index = 0;
+  world::Illumination light;
+};
+
+// Every draw of frame `index` before its placement, in one fixed order (the frames are
+// reproducible from their seeds only if it never changes); the choices are kept in `out`.
+FrameDraw DrawFrame(const Setup& s, std::uint64_t index, std::mt19937_64& rng, FrameResult& out) {
   const MeasureConfig& c = *s.config;
-  std::mt19937_64 rng(StreamSeed(c.seed, index));
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  FrameResult out;
+  FrameDraw draw;
   out.map_index = static_cast<int>(index % s.rings_of_map.size());
   const std::vector<double>& weights = s.ring_weight_of_map[out.map_index];
   const std::size_t ring = std::min<std::size_t>(
       std::upper_bound(weights.begin(), weights.end(), unit(rng) * weights.back()) -
           weights.begin(),
       weights.size() - 1);
-  const RingWorld& rw = s.rings_of_map[out.map_index][ring];
+  draw.ring = &s.rings_of_map[out.map_index][ring];
   out.doors_open = c.open_door_fraction > 0.0 && unit(rng) < 0.5;
-  const world::Scene& scene = out.doors_open ? *rw.open_scene : *rw.closed_scene;
+  draw.scene = out.doors_open ? draw.ring->open_scene.get() : draw.ring->closed_scene.get();
 
   // Inside the §6.4.2 envelope, or outside it in range, stare or both.
   out.in_envelope = unit(rng) < c.envelope_share;
@@ -223,45 +235,53 @@ FrameResult RunFrame(const Setup& s, std::uint64_t index) {
   const double sign_l = unit(rng) < 0.5 ? -1.0 : 1.0;
   const double sign_s = unit(rng) < 0.5 ? -1.0 : 1.0;
   const double u_l = unit(rng), u_s = unit(rng);
-  double lateral = sign_l * u_l * c.envelope_lateral_in;
-  double stare = sign_s * u_s * c.envelope_stare_deg;
+  draw.lateral_in = sign_l * u_l * c.envelope_lateral_in;
+  draw.stare_deg = sign_s * u_s * c.envelope_stare_deg;
   if (!out.in_envelope) {
     if (outside_mode != 1) {
-      lateral =
+      draw.lateral_in =
           sign_l * (c.envelope_lateral_in + u_l * (c.outside_lateral_in - c.envelope_lateral_in));
     }
     if (outside_mode != 0) {
-      stare = sign_s * (c.envelope_stare_deg + u_s * (c.outside_stare_deg - c.envelope_stare_deg));
+      draw.stare_deg =
+          sign_s * (c.envelope_stare_deg + u_s * (c.outside_stare_deg - c.envelope_stare_deg));
     }
   }
-  std::size_t roll_index = 0;
   if (s.roll_deg.size() > 1 && unit(rng) < 0.5) {
-    roll_index = std::uniform_int_distribution<std::size_t>(1, s.roll_deg.size() - 1)(rng);
+    draw.roll_index = std::uniform_int_distribution<std::size_t>(1, s.roll_deg.size() - 1)(rng);
   }
-  out.rolled = roll_index != 0;
-  world::Illumination light;
-  light.gain = c.min_gain + unit(rng) * (c.max_gain - c.min_gain);
-  light.offset = c.min_offset + unit(rng) * (c.max_offset - c.min_offset);
-  light.gradient = (2.0 * unit(rng) - 1.0) * c.max_gradient;
-  light.noise_stddev = c.min_noise + unit(rng) * (c.max_noise - c.min_noise);
+  out.rolled = draw.roll_index != 0;
+  draw.light.gain = c.min_gain + unit(rng) * (c.max_gain - c.min_gain);
+  draw.light.offset = c.min_offset + unit(rng) * (c.max_offset - c.min_offset);
+  draw.light.gradient = (2.0 * unit(rng) - 1.0) * c.max_gradient;
+  draw.light.noise_stddev = c.min_noise + unit(rng) * (c.max_noise - c.min_noise);
 
   out.aimed_at_door = unit(rng) < c.door_aim_share;
-  const Placement place = Place(s, rw, scene, lateral, DegToRad(stare), out.aimed_at_door, rng);
-  if (!place.ok) return out;  // dropped: nowhere to stand on this ring
+  return draw;
+}
 
-  const world::RenderedFrame frame = s.renderers[roll_index]->Render(scene, place.X_WR, light, rng);
+// The sonar sweep from the frame's pose, as the landmark process receives it.
+sensing::SonarScan SenseSonar(const Setup& s, const world::Scene& scene, const world::Pose2d& X_WR,
+                              std::mt19937_64& rng) {
   sensing::SonarScan scan;
-  for (const world::SonarReading& r : s.sonar->Sense(scene, place.X_WR, s.sonar_error, rng)) {
+  for (const world::SonarReading& r : s.sonar->Sense(scene, X_WR, s.sonar_error, rng)) {
     scan.ranges_in.push_back(r.valid ? r.range_in : 0.0);
     scan.valid.push_back(r.valid);
   }
+  return scan;
+}
 
-  // Ground truth: the doors wholly in view.
-  struct Whole {
-    double left, right;
-    int cls;
-  };
-  std::vector<Whole> whole;
+// A door wholly in view: its jambs' columns and its class index.
+struct WholeDoor {
+  double left, right;
+  int cls;
+};
+
+// Ground truth: the doors wholly in view. Sets the frame's truth, and marks it when part of
+// a door is in view.
+std::vector<WholeDoor> WholeDoorsInView(const MeasureConfig& c, const world::RenderedFrame& frame,
+                                        FrameResult& out) {
+  std::vector<WholeDoor> whole;
   const double right_limit = frame.image.cols - 1 - c.whole_door_margin_px;
   for (const world::DoorTruth& d : frame.truth.doors) {
     const bool inside = d.both_jambs_visible && d.left_column_px >= c.whole_door_margin_px &&
@@ -274,15 +294,16 @@ FrameResult RunFrame(const Setup& s, std::uint64_t index) {
     }
   }
   out.truth = whole.empty() ? FrameResult::Truth::kNegative : FrameResult::Truth::kPositive;
+  return whole;
+}
 
-  const cv::Mat& img = frame.image;
-  const vision::ImageView view{img.cols, img.rows, static_cast<int>(img.step),
-                               "mono8",  img.data, img.total()};
-  const landmark::FrameOutcome sensed = s.pipeline->Process(view, scan);
+// The outcome of a frame: what the pipeline sensed against the whole doors in view.
+void Score(const landmark::FrameOutcome& sensed, const std::vector<WholeDoor>& whole,
+           FrameResult& out) {
   if (sensed.kind == landmark::FrameOutcome::Kind::kNoRange ||
       sensed.kind == landmark::FrameOutcome::Kind::kBadFrame) {
     out.outcome = FrameResult::Outcome::kDropped;
-    return out;
+    return;
   }
   const bool door = sensed.kind == landmark::FrameOutcome::Kind::kObservation;
   if (door) {
@@ -291,20 +312,20 @@ FrameResult RunFrame(const Setup& s, std::uint64_t index) {
   }
   if (whole.empty()) {
     out.outcome = door ? FrameResult::Outcome::kFalsePositive : FrameResult::Outcome::kTrueNegative;
-    return out;
+    return;
   }
   if (!door) {
     out.true_class = whole.front().cls;
     out.outcome = FrameResult::Outcome::kFalseNegative;
-    return out;
+    return;
   }
   // The whole door the sensed ribbon lies on (its centre between the jambs), else the
   // nearest one.
   const double centre =
       0.5 * (sensed.observation.footprints.lj_px + sensed.observation.footprints.rj_px);
-  const Whole* match = nullptr;
+  const WholeDoor* match = nullptr;
   double best = 1e300;
-  for (const Whole& w : whole) {
+  for (const WholeDoor& w : whole) {
     const double dist = centre < w.left    ? w.left - centre
                         : centre > w.right ? centre - w.right
                                            : 0.0;
@@ -319,6 +340,27 @@ FrameResult RunFrame(const Setup& s, std::uint64_t index) {
                                std::abs(sensed.observation.footprints.rj_px - match->right));
   out.outcome = out.sensed_class == match->cls ? FrameResult::Outcome::kTruePositive
                                                : FrameResult::Outcome::kMissizedPositive;
+}
+
+FrameResult RunFrame(const Setup& s, std::uint64_t index) {
+  std::mt19937_64 rng(StreamSeed(s.config->seed, index));
+  FrameResult out;
+  const FrameDraw draw = DrawFrame(s, index, rng, out);
+  const world::Scene& scene = *draw.scene;
+  const Placement place = Place(s, *draw.ring, scene, draw.lateral_in, DegToRad(draw.stare_deg),
+                                out.aimed_at_door, rng);
+  if (!place.ok) return out;  // dropped: nowhere to stand on this ring
+
+  const world::RenderedFrame frame =
+      s.renderers[draw.roll_index]->Render(scene, place.X_WR, draw.light, rng);
+  const sensing::SonarScan scan = SenseSonar(s, scene, place.X_WR, rng);
+  const std::vector<WholeDoor> whole = WholeDoorsInView(*s.config, frame, out);
+
+  const cv::Mat& img = frame.image;
+  const vision::ImageView view{img.cols, img.rows, static_cast<int>(img.step),
+                               "mono8",  img.data, img.total()};
+  const landmark::FrameOutcome sensed = s.pipeline->Process(view, scan);
+  Score(sensed, whole, out);
   return out;
 }
 
@@ -429,9 +471,8 @@ std::string Rates(const char* label, const Tally& t) {
               t.missized_pct(), t.fn_pct());
 }
 
-}  // namespace
-
-std::string FormatReport(const Measurement& m) {
+// The run's parameters, and how its frames split into positives and negatives.
+std::string ReportHeader(const Measurement& m) {
   const MeasureConfig& c = m.config;
   const Tally& a = m.all;
   std::string s;
@@ -459,7 +500,12 @@ std::string FormatReport(const Measurement& m) {
       "positives (a whole door in view) %ld; negatives (no whole door in view) %ld, of "
       "which %ld show part of a door",
       a.positives(), a.negatives(), partial_negatives);
-  s += "\nTable 6.10  Empirical error model (%)        paper    ours\n";
+  return s;
+}
+
+// Table 6.10, the paper's rates beside ours.
+std::string Table610(const Tally& a) {
+  std::string s = "\nTable 6.10  Empirical error model (%)        paper    ours\n";
   const struct {
     const char* name;
     double paper, ours;
@@ -471,9 +517,14 @@ std::string FormatReport(const Measurement& m) {
               {"Missized True Positives", PaperTable610::kMissizedTruePositives, a.missized_pct()},
               {"False Negatives", PaperTable610::kFalseNegatives, a.fn_pct()}};
   for (const auto& r : rows) s += Line("  %-40s %6.2f  %6.2f", r.name, r.paper, r.ours);
+  return s;
+}
 
-  s += "\nBreakdown (%)               frames correct     TP     TN  miscl     FP  missz     FN\n";
-  s += Rates("all", a);
+// The rates over subsets of the frames: envelope, roll, open doors and map.
+std::string Breakdown(const Measurement& m) {
+  std::string s =
+      "\nBreakdown (%)               frames correct     TP     TN  miscl     FP  missz     FN\n";
+  s += Rates("all", m.all);
   s += Rates("inside 6.4.2 envelope", m.in_envelope);
   s += Rates("outside the envelope", m.outside_envelope);
   s += Rates("level camera", m.level);
@@ -483,8 +534,14 @@ std::string FormatReport(const Measurement& m) {
   for (std::size_t i = 0; i < m.per_map.size(); ++i) {
     s += Rates(m.map_names[i].c_str(), m.per_map[i]);
   }
+  return s;
+}
 
-  s += "\nPositives by true class: sensed as (rows: true class; TP on the diagonal; - = missed)\n";
+// The confusions: positives by true and sensed class, and the classes of false positives.
+std::string Confusions(const Measurement& m) {
+  const Tally& a = m.all;
+  std::string s =
+      "\nPositives by true class: sensed as (rows: true class; TP on the diagonal; - = missed)\n";
   s += "  true    frames";
   for (int k = 0; k < kClassCount; ++k) s += Fmt("%7s", ClassName(k));
   s += "      -\n";
@@ -512,6 +569,16 @@ std::string FormatReport(const Measurement& m) {
   }
   s += Line("\n  (%ld of %ld false positives on frames showing part of a door)",
             m.fp_on_partial_doors, a.fp);
+  return s;
+}
+
+}  // namespace
+
+std::string FormatReport(const Measurement& m) {
+  std::string s = ReportHeader(m);
+  s += Table610(m.all);
+  s += Breakdown(m);
+  s += Confusions(m);
   return s;
 }
 

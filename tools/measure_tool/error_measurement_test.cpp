@@ -1,6 +1,6 @@
 // The measurement of the landmark pipeline: seeds, thread independence, the Table 6.10
 // tally and the error-model file.
-#include "measure/error_measurement.h"
+#include "measure_tool/error_measurement.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

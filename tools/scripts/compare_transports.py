@@ -9,7 +9,7 @@ For each seed, the same start is run twice with the same configuration files:
 The deployed run's sensed sequence is the localizer's "sensed:" log line when it declared the
 pose, and its pose is the virtual robot's "pose recovered" line (judged on the truth there).
 
-Usage: tools/compare_transports.py --bin build/bin --seeds 1-20 [--map maps/M.yaml --ring R]
+Usage: tools/scripts/compare_transports.py --bin build/bin --seeds 1-20 [--map maps/M.yaml --ring R]
 Prints one line per seed and the agreement; --json writes every pair.
 """
 import argparse

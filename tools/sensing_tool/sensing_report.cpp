@@ -1,4 +1,4 @@
-#include "sensing/sensing_report.h"
+#include "sensing_tool/sensing_report.h"
 
 #include <fmt/format.h>
 
@@ -54,23 +54,18 @@ std::string FigureName(Geometry g, double stare_deg) {
                      g == Geometry::kShortSide ? "short_side" : "two_side", stare_deg);
 }
 
-}  // namespace
+StareScene SceneAt(const ReportOptions& opt, double stare_deg) {
+  StareScene s;
+  s.wall_distance_in = opt.wall_distance_in;
+  s.stare_rad = DegToRad(stare_deg);
+  s.door_width_in = opt.door_width_in;
+  s.door_offset_in = opt.door_offset_in;
+  return s;
+}
 
-SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& opt) {
-  const CameraModel cam = CameraModel::FromConfig(robot.camera);
-  SensingReport rep;
+// The report's heading: the free parameters and the camera.
+void AddParameters(const RobotConfig& robot, const ReportOptions& opt, SensingReport& rep) {
   std::string& out = rep.text;
-  nlohmann::json& js = rep.json;
-
-  auto scene_at = [&](double stare_deg) {
-    StareScene s;
-    s.wall_distance_in = opt.wall_distance_in;
-    s.stare_rad = DegToRad(stare_deg);
-    s.door_width_in = opt.door_width_in;
-    s.door_offset_in = opt.door_offset_in;
-    return s;
-  };
-
   out += "StickRep sensing report: Chapter 5 of the dissertation, ours beside the paper's\n";
   out += fmt::format(
       "seed {}  trials {}  wall {:.1f} in  door {:.1f} in (offset {:.1f} in)  short side {}\n",
@@ -83,7 +78,7 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
       robot.camera.fov_deg, robot.camera.image_width_px, robot.camera.focal_length_mm,
       robot.camera.pixel_pitch_mm, RadToDeg(opt.bounds.delta_theta_rad),
       opt.bounds.delta_footprint_px, ToString(opt.bounds.surface));
-  js["parameters"] = {
+  rep.json["parameters"] = {
       {"seed", opt.seed},
       {"trials", opt.trials},
       {"wall_distance_in", opt.wall_distance_in},
@@ -98,9 +93,12 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
       {"delta_theta_deg", RadToDeg(opt.bounds.delta_theta_rad)},
       {"delta_footprint_px", opt.bounds.delta_footprint_px},
       {"surface", ToString(opt.bounds.surface)}};
+}
 
-  // Table 5.2: the approximation columns are geometry, computed; the returned-range columns
-  // are the paper's empirical summary, used as given.
+// Table 5.2: the approximation columns are geometry, computed; the returned-range columns
+// are the paper's empirical summary, used as given.
+void AddTable52(const CameraModel& cam, SensingReport& rep) {
+  std::string& out = rep.text;
   out += "Table 5.2  Composite ranging error (%): paper | ours (approximation computed)\n";
   out += "  stare   L->RL         R->RR         dL->L  dR->R (paper's, used as given)\n";
   for (int i = 0; i < 3; ++i) {
@@ -109,16 +107,19 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
     out += fmt::format("  {:3.0f}   {:4.2f} | {:4.2f}   {:4.2f} | {:4.2f}   {:5.1f}  {:5.1f}\n", s,
                        kPaperTable52[i][0], ours.approx_l_pct, kPaperTable52[i][1],
                        ours.approx_r_pct, kPaperTable52[i][2], kPaperTable52[i][3]);
-    js["table_5_2"].push_back({{"stare_deg", s},
-                               {"paper_approx_l_pct", kPaperTable52[i][0]},
-                               {"ours_approx_l_pct", ours.approx_l_pct},
-                               {"paper_approx_r_pct", kPaperTable52[i][1]},
-                               {"ours_approx_r_pct", ours.approx_r_pct},
-                               {"returned_l_pct", kPaperTable52[i][2]},
-                               {"returned_r_pct", kPaperTable52[i][3]}});
+    rep.json["table_5_2"].push_back({{"stare_deg", s},
+                                     {"paper_approx_l_pct", kPaperTable52[i][0]},
+                                     {"ours_approx_l_pct", ours.approx_l_pct},
+                                     {"paper_approx_r_pct", kPaperTable52[i][1]},
+                                     {"ours_approx_r_pct", ours.approx_r_pct},
+                                     {"returned_l_pct", kPaperTable52[i][2]},
+                                     {"returned_r_pct", kPaperTable52[i][3]}});
   }
+}
 
-  // Table 5.3.
+// Table 5.3.
+void AddTable53(const CameraModel& cam, const ReportOptions& opt, SensingReport& rep) {
+  std::string& out = rep.text;
   out += "\nTable 5.3  Worst-case width error, linear first-order model (in)\n";
   out +=
       "  geometry     stare  paper   ours: sum|d*D|  (diff)   |grad.D|  (diff)   terms "
@@ -127,7 +128,7 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
     for (int i = 0; i < 3; ++i) {
       const double s = kStaresDeg[i];
       const LinearEstimate e =
-          Must(LinearFirstOrder(cam, scene_at(s), g, opt.bounds, opt.edges), "Table 5.3");
+          Must(LinearFirstOrder(cam, SceneAt(opt, s), g, opt.bounds, opt.edges), "Table 5.3");
       const double paper =
           g == Geometry::kTwoSide ? kPaperTable53TwoSide[i] : kPaperTable53ShortSide[i];
       std::string terms;
@@ -137,17 +138,20 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
       out += fmt::format("  {:<10}   {:3.0f}   {:5.2f}   {:13.2f}   {}   {:7.2f}  {}  {}\n",
                          ToString(g), s, paper, e.worst_case_in, Ratio(e.worst_case_in, paper),
                          e.dot_product_in, Ratio(e.dot_product_in, paper), terms);
-      js["table_5_3"].push_back({{"geometry", ToString(g)},
-                                 {"stare_deg", s},
-                                 {"paper_in", paper},
-                                 {"ours_worst_case_in", e.worst_case_in},
-                                 {"ours_dot_product_in", e.dot_product_in},
-                                 {"width_error_free_in", e.width_in},
-                                 {"terms", TermsJson(e)}});
+      rep.json["table_5_3"].push_back({{"geometry", ToString(g)},
+                                       {"stare_deg", s},
+                                       {"paper_in", paper},
+                                       {"ours_worst_case_in", e.worst_case_in},
+                                       {"ours_dot_product_in", e.dot_product_in},
+                                       {"width_error_free_in", e.width_in},
+                                       {"terms", TermsJson(e)}});
     }
   }
+}
 
-  // Table 5.4: Short Side with half the theta error (twice the sensors).
+// Table 5.4: Short Side with half the theta error (twice the sensors).
+void AddTable54(const CameraModel& cam, const ReportOptions& opt, SensingReport& rep) {
+  std::string& out = rep.text;
   out += "\nTable 5.4  Short Side worst-case error with dtheta = 3.75 deg (in)\n";
   out += "  stare  paper   ours sum|d*D|  (diff)   |grad.D|  (diff)\n";
   ErrorBounds half = opt.bounds;
@@ -155,30 +159,37 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
   for (int i = 0; i < 3; ++i) {
     const double s = kStaresDeg[i];
     const LinearEstimate e = Must(
-        LinearFirstOrder(cam, scene_at(s), Geometry::kShortSide, half, opt.edges), "Table 5.4");
+        LinearFirstOrder(cam, SceneAt(opt, s), Geometry::kShortSide, half, opt.edges), "Table 5.4");
     out += fmt::format("  {:3.0f}   {:5.2f}   {:13.2f}   {}   {:7.2f}  {}\n", s, kPaperTable54[i],
                        e.worst_case_in, Ratio(e.worst_case_in, kPaperTable54[i]), e.dot_product_in,
                        Ratio(e.dot_product_in, kPaperTable54[i]));
-    js["table_5_4"].push_back({{"stare_deg", s},
-                               {"paper_in", kPaperTable54[i]},
-                               {"ours_worst_case_in", e.worst_case_in},
-                               {"ours_dot_product_in", e.dot_product_in},
-                               {"terms", TermsJson(e)}});
+    rep.json["table_5_4"].push_back({{"stare_deg", s},
+                                     {"paper_in", kPaperTable54[i]},
+                                     {"ours_worst_case_in", e.worst_case_in},
+                                     {"ours_dot_product_in", e.dot_product_in},
+                                     {"terms", TermsJson(e)}});
   }
+}
 
-  // Table 5.5: tolerance in theta for a 2 in worst case.
+// Table 5.5: tolerance in theta for a 2 in worst case.
+void AddTable55(const CameraModel& cam, const ReportOptions& opt, SensingReport& rep) {
+  std::string& out = rep.text;
   out += "\nTable 5.5  Short Side dtheta tolerance for worst-case error within 2 in (deg)\n";
   out += "  stare  paper   ours   (search capped at 45 deg, where Tables 4.2/4.3 turn gross)\n";
   for (int i = 0; i < 3; ++i) {
     const double s = kStaresDeg[i];
     const double tol =
-        RadToDeg(Must(ShortSideThetaTolerance(cam, scene_at(s), opt.bounds, 2.0), "Table 5.5"));
+        RadToDeg(Must(ShortSideThetaTolerance(cam, SceneAt(opt, s), opt.bounds, 2.0), "Table 5.5"));
     out += fmt::format("  {:3.0f}   {:5.1f}   {:5.2f}\n", s, kPaperTable55Deg[i], tol);
-    js["table_5_5"].push_back(
+    rep.json["table_5_5"].push_back(
         {{"stare_deg", s}, {"paper_deg", kPaperTable55Deg[i]}, {"ours_deg", tol}});
   }
+}
 
-  // Table 5.6 and Figures 5.4-5.9: the Monte Carlo experiment, one generator for the run.
+// Table 5.6 and Figures 5.4-5.9: the Monte Carlo experiment, one generator for the run.
+// Returns the Short Side RMS width error at 90 deg, relative to the door's width.
+double AddTable56(const CameraModel& cam, const ReportOptions& opt, SensingReport& rep) {
+  std::string& out = rep.text;
   std::mt19937_64 rng(opt.seed);
   MonteCarloConfig mc;
   mc.trials = opt.trials;
@@ -191,7 +202,7 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
   for (Geometry g : {Geometry::kShortSide, Geometry::kTwoSide}) {
     for (int i = 0; i < 3; ++i) {
       const double s = kStaresDeg[i];
-      const MonteCarloResult r = Must(RunMonteCarlo(cam, scene_at(s), g, mc, rng), "Table 5.6");
+      const MonteCarloResult r = Must(RunMonteCarlo(cam, SceneAt(opt, s), g, mc, rng), "Table 5.6");
       const bool has_paper = g == Geometry::kShortSide;
       out += fmt::format(
           "  {:<10}   {:3.0f}   {}   {:5.3f}   {}   {:+8.2f}  {:7.2f}  {:8d}\n", ToString(g), s,
@@ -206,7 +217,7 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
                             {"trials", r.trials},
                             {"rejected", r.rejected}};
       if (has_paper) row["paper_p_within_2in"] = kPaperTable56[i];
-      js["table_5_6"].push_back(row);
+      rep.json["table_5_6"].push_back(row);
       if (g == Geometry::kShortSide && s == 90.0) {
         short90_rms_rel = std::sqrt(r.mean_error_in * r.mean_error_in + r.stddev_in * r.stddev_in) /
                           opt.door_width_in;
@@ -219,10 +230,15 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
                             "width error (in)"));
     }
   }
+  return short90_rms_rel;
+}
 
-  // Table 4.1 and the Bayes derivation (door30 included). The class-conditional spread is
-  // fitted to Table 4.1's interior boundaries (the paper's boundaries encode its measured
-  // error); our own Monte Carlo spread at 90 deg is printed beside it for comparison.
+// Table 4.1 and the Bayes derivation (door30 included). The class-conditional spread is
+// fitted to Table 4.1's interior boundaries (the paper's boundaries encode its measured
+// error); our own Monte Carlo spread at 90 deg is printed beside it for comparison.
+void AddTable41(double short90_rms_rel, SensingReport& rep) {
+  std::string& out = rep.text;
+  nlohmann::json& js = rep.json;
   BayesModel bayes;
   const double fitted = FitSigmaToTable41(bayes);
   bayes.sigma_rel = fitted;
@@ -263,6 +279,20 @@ SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& 
     out += fmt::format(" {} [{:.1f}, {:.1f})", ToString(b.door_class), b.low_in, b.high_in);
   }
   out += "\n";
+}
+
+}  // namespace
+
+SensingReport BuildSensingReport(const RobotConfig& robot, const ReportOptions& opt) {
+  const CameraModel cam = CameraModel::FromConfig(robot.camera);
+  SensingReport rep;
+  AddParameters(robot, opt, rep);
+  AddTable52(cam, rep);
+  AddTable53(cam, opt, rep);
+  AddTable54(cam, opt, rep);
+  AddTable55(cam, opt, rep);
+  const double short90_rms_rel = AddTable56(cam, opt, rep);
+  AddTable41(short90_rms_rel, rep);
   return rep;
 }
 

@@ -1,4 +1,4 @@
-#include "recovery/study.h"
+#include "study_tool/study.h"
 
 #include <algorithm>
 #include <chrono>
@@ -136,31 +136,46 @@ RunResult RunOne(MethodRunner& m, SensedStream& stream, int max_edges, double fr
   return r;
 }
 
-}  // namespace
-
-DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
+void CheckStudyOptions(const map::Map& map, const StudyOptions& options) {
   if (map.EdgeCount() == 0) throw std::invalid_argument("the map has no edges");
   if (options.trials < 1) throw std::invalid_argument("trials must be at least 1");
   if (options.runs < 1) throw std::invalid_argument("runs must be at least 1");
   if (options.methods.empty()) throw std::invalid_argument("no method to study");
   options.error_model.Validate();
   options.config.Validate();
-  const auto t0 = std::chrono::steady_clock::now();
+}
 
-  const map::MatchIndex index(map);
-  const StudyConfig& cfg = options.config;
-  const Confusion modeled = Resolve(options.error_model, index);
-  const Confusion clean = Resolve(ErrorModel::None(), index);
-  SensingNoise quiet = SensingNoise::None();
-  quiet.class_region_in = cfg.noise.class_region_in;
-  const map::MatchTolerance exact{0.0, 0.0, cfg.base_tolerance.angle_deg};
-  const double frame_in = cfg.FrameTravelIn();
-
+// What every worker reads: the map's index and the two ways of sensing it, through the
+// error model or error-free with exact matching (§6.4.1), and which of them are needed.
+struct StudySensing {
+  const map::MatchIndex* index = nullptr;
+  const StudyConfig* cfg = nullptr;
+  Confusion modeled;
+  Confusion clean;
+  SensingNoise quiet;
+  map::MatchTolerance exact;
+  double frame_in = 0;
   bool need_modeled = false, need_clean = false;
-  for (const MethodSpec& m : options.methods) (m.error_free ? need_clean : need_modeled) = true;
+};
 
-  const std::uint64_t total =
-      static_cast<std::uint64_t>(options.trials) * static_cast<std::uint64_t>(options.runs);
+StudySensing PrepareSensing(const map::MatchIndex& index, const StudyOptions& options) {
+  const StudyConfig& cfg = options.config;
+  StudySensing s;
+  s.index = &index;
+  s.cfg = &cfg;
+  s.modeled = Resolve(options.error_model, index);
+  s.clean = Resolve(ErrorModel::None(), index);
+  s.quiet = SensingNoise::None();
+  s.quiet.class_region_in = cfg.noise.class_region_in;
+  s.exact = {0.0, 0.0, cfg.base_tolerance.angle_deg};
+  s.frame_in = cfg.FrameTravelIn();
+  for (const MethodSpec& m : options.methods) (m.error_free ? s.need_clean : s.need_modeled) = true;
+  return s;
+}
+
+// The result before any run: the map's figures, and room for every run of every method.
+DomainResult EmptyResult(const map::Map& map, const map::MatchIndex& index,
+                         const StudyOptions& options, std::uint64_t total) {
   DomainResult out;
   out.map_name = map.info().name;
   out.map_edges = index.EdgeCount();
@@ -172,36 +187,83 @@ DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
     out.experiments[m].method = options.methods[m];
     out.experiments[m].runs.resize(total);
   }
+  return out;
+}
+
+// One worker thread's runners, one per method.
+std::vector<MethodRunner> MakeRunners(const StudySensing& s,
+                                      const std::vector<MethodSpec>& methods) {
+  const StudyConfig& cfg = *s.cfg;
+  std::vector<MethodRunner> runners;
+  for (const MethodSpec& spec : methods) {
+    MethodRunner r;
+    r.spec = spec;
+    if (spec.kind == MethodSpec::Kind::kStrategy) {
+      RecoveryConfig rc = RecoveryConfig::For(spec.strategy, cfg);
+      if (spec.error_free) rc.base_tolerance = s.exact;
+      r.recovery = std::make_unique<PoseRecovery>(*s.index, rc);
+    } else {
+      BayesModel bm{spec.error_free ? s.clean : s.modeled, spec.error_free ? s.quiet : cfg.noise,
+                    cfg.bayes};
+      r.bayes = std::make_unique<BayesLocalizer>(*s.index, bm);
+    }
+    runners.push_back(std::move(r));
+  }
+  return runners;
+}
+
+// Run `idx` (trial-major) of every method, all reading the same sensed edges.
+void RunIndex(std::size_t idx, const StudySensing& s, const StudyOptions& options,
+              std::vector<MethodRunner>& runners, DomainResult& out) {
+  const StudyConfig& cfg = *s.cfg;
+  const std::uint64_t trial = idx / options.runs, run = idx % options.runs;
+  const std::uint64_t seed = RunSeed(options.seed, trial, run);
+  std::optional<SensedStream> noisy, exact_stream;
+  if (s.need_modeled) noisy.emplace(*s.index, s.modeled, cfg.noise, cfg.base_tolerance, seed);
+  if (s.need_clean) exact_stream.emplace(*s.index, s.clean, s.quiet, s.exact, seed);
+  for (std::size_t m = 0; m < runners.size(); ++m) {
+    MethodRunner& runner = runners[m];
+    SensedStream& stream = runner.spec.error_free ? *exact_stream : *noisy;
+    out.experiments[m].runs[idx] = RunOne(runner, stream, cfg.max_edges, s.frame_in);
+  }
+}
+
+// Each trial's summary, and the trial reported.
+void SummariseTrials(ExperimentResult& e, const StudyOptions& options) {
+  for (int t = 0; t < options.trials; ++t) {
+    e.trials.push_back(Summarise(&e.runs[static_cast<std::size_t>(t) * options.runs], options.runs,
+                                 options.config.speed_ftps));
+  }
+  // The paper reports "the median error rate trial" (§6.6.1); without error, the trial
+  // with the median mean edge count.
+  std::vector<int> order(options.trials);
+  std::iota(order.begin(), order.end(), 0);
+  const bool by_edges = e.method.error_free;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const double ka = by_edges ? e.trials[a].mean_edges : e.trials[a].pct_with_error;
+    const double kb = by_edges ? e.trials[b].mean_edges : e.trials[b].pct_with_error;
+    return ka < kb;
+  });
+  e.median_trial = order[(options.trials - 1) / 2];
+}
+
+}  // namespace
+
+DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
+  CheckStudyOptions(map, options);
+  const auto t0 = std::chrono::steady_clock::now();
+
+  const map::MatchIndex index(map);
+  const StudySensing sensing = PrepareSensing(index, options);
+  const std::uint64_t total =
+      static_cast<std::uint64_t>(options.trials) * static_cast<std::uint64_t>(options.runs);
+  DomainResult out = EmptyResult(map, index, options, total);
 
   // One runner per method and worker thread; each run has its own seeded streams.
   const auto make_worker = [&]() -> IndexTask {
-    auto runners = std::make_shared<std::vector<MethodRunner>>();
-    for (const MethodSpec& spec : options.methods) {
-      MethodRunner r;
-      r.spec = spec;
-      if (spec.kind == MethodSpec::Kind::kStrategy) {
-        RecoveryConfig rc = RecoveryConfig::For(spec.strategy, cfg);
-        if (spec.error_free) rc.base_tolerance = exact;
-        r.recovery = std::make_unique<PoseRecovery>(index, rc);
-      } else {
-        BayesModel bm{spec.error_free ? clean : modeled, spec.error_free ? quiet : cfg.noise,
-                      cfg.bayes};
-        r.bayes = std::make_unique<BayesLocalizer>(index, bm);
-      }
-      runners->push_back(std::move(r));
-    }
-    return [&, runners](std::size_t idx) {
-      const std::uint64_t trial = idx / options.runs, run = idx % options.runs;
-      const std::uint64_t seed = RunSeed(options.seed, trial, run);
-      std::optional<SensedStream> noisy, exact_stream;
-      if (need_modeled) noisy.emplace(index, modeled, cfg.noise, cfg.base_tolerance, seed);
-      if (need_clean) exact_stream.emplace(index, clean, quiet, exact, seed);
-      for (std::size_t m = 0; m < runners->size(); ++m) {
-        MethodRunner& runner = (*runners)[m];
-        SensedStream& s = runner.spec.error_free ? *exact_stream : *noisy;
-        out.experiments[m].runs[idx] = RunOne(runner, s, cfg.max_edges, frame_in);
-      }
-    };
+    auto runners =
+        std::make_shared<std::vector<MethodRunner>>(MakeRunners(sensing, options.methods));
+    return [&, runners](std::size_t idx) { RunIndex(idx, sensing, options, *runners, out); };
   };
   const int threads =
       options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -211,23 +273,7 @@ DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
   }
   ParallelFor(total, threads, make_worker, progress);
 
-  for (ExperimentResult& e : out.experiments) {
-    for (int t = 0; t < options.trials; ++t) {
-      e.trials.push_back(Summarise(&e.runs[static_cast<std::size_t>(t) * options.runs],
-                                   options.runs, cfg.speed_ftps));
-    }
-    // The paper reports "the median error rate trial" (§6.6.1); without error, the trial
-    // with the median mean edge count.
-    std::vector<int> order(options.trials);
-    std::iota(order.begin(), order.end(), 0);
-    const bool by_edges = e.method.error_free;
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      const double ka = by_edges ? e.trials[a].mean_edges : e.trials[a].pct_with_error;
-      const double kb = by_edges ? e.trials[b].mean_edges : e.trials[b].pct_with_error;
-      return ka < kb;
-    });
-    e.median_trial = order[(options.trials - 1) / 2];
-  }
+  for (ExperimentResult& e : out.experiments) SummariseTrials(e, options);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

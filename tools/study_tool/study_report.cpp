@@ -1,4 +1,4 @@
-#include "recovery/study_report.h"
+#include "study_tool/study_report.h"
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
@@ -329,6 +329,132 @@ void PrintSummary(std::ostream& out, const std::vector<DomainResult>& results) {
   }
 }
 
+namespace {
+
+// (map path, methods) per domain.
+using StudyPlan = std::vector<std::pair<std::string, std::vector<MethodSpec>>>;
+
+// The options every domain shares; `current_file` names the file being read, for errors.
+StudyOptions LoadBaseOptions(const ToolOptions& opt, const std::string& root,
+                             std::string& current_file) {
+  StudyOptions base;
+  base.trials = opt.trials;
+  base.runs = opt.runs;
+  base.seed = opt.seed;
+  base.threads = opt.threads;
+  current_file = opt.error_model_path.empty() ? root + "/configs/error_model_paper.yaml"
+                                              : opt.error_model_path;
+  base.error_model = LoadErrorModel(current_file);
+  current_file = opt.config_path.empty() ? root + "/configs/study.yaml" : opt.config_path;
+  base.config = LoadStudyConfig(current_file);
+  current_file.clear();
+  return base;
+}
+
+// Chapter 6 whole: the five domains of §6.8 with the methods the text studied on each.
+StudyPlan PaperSuitePlan(const std::string& root) {
+  StudyPlan plan;
+  for (const char* name : kSuiteMaps) {
+    std::vector<std::string> ids = {"no-error", "deterministic", "bayes"};
+    if (std::string(name) == "engineering_building_3f") {
+      // §6.6: the heuristics were studied on the Engineering Building only.
+      ids = {"no-error", "none",       "relaxation",    "first-frame", "false-door",
+             "missized", "full-suite", "deterministic", "bayes"};
+    }
+    std::vector<MethodSpec> methods;
+    for (const auto& id : ids) methods.push_back(ParseMethod(id));
+    plan.push_back({root + "/maps/" + name + ".yaml", methods});
+  }
+  return plan;
+}
+
+// The suite's domains, then the maps given; nothing (with the reason on `err`) for a bad
+// suite or no domain at all.
+std::optional<StudyPlan> PlanDomains(const ToolOptions& opt, const std::string& root,
+                                     std::ostream& err) {
+  StudyPlan plan;
+  if (opt.suite == "paper") {
+    plan = PaperSuitePlan(root);
+  } else if (!opt.suite.empty()) {
+    err << "stickrep-study: unknown suite '" << opt.suite << "' (known: paper)\n";
+    return std::nullopt;
+  }
+  std::vector<MethodSpec> methods;
+  for (const auto& id : opt.methods.empty()
+                            ? std::vector<std::string>{"no-error", "deterministic", "bayes"}
+                            : opt.methods) {
+    methods.push_back(ParseMethod(id));
+  }
+  for (const auto& m : opt.maps) plan.push_back({m, methods});
+  if (plan.empty()) {
+    err << "stickrep-study: give a map file or --suite paper\n";
+    return std::nullopt;
+  }
+  return plan;
+}
+
+std::vector<map::Map> LoadPlannedMaps(const StudyPlan& plan, std::string& current_file) {
+  std::vector<map::Map> maps;
+  for (const auto& [path, m] : plan) {
+    current_file = path;
+    maps.push_back(map::LoadMap(path));
+    if (maps.back().EdgeCount() == 0) {
+      throw InputError(path, 0, "rings", "the map has no edges: nothing to match against");
+    }
+  }
+  current_file.clear();
+  return maps;
+}
+
+// The domains studied, in plan order, with the options each was run with.
+struct StudyRun {
+  std::vector<DomainResult> results;
+  std::vector<StudyOptions> used;
+  double seconds = 0;
+};
+
+// Runs the domains one after the other, printing each as it ends.
+StudyRun RunDomains(const ToolOptions& opt, const StudyOptions& base, const StudyPlan& plan,
+                    const std::vector<map::Map>& maps, ProgressBar& bar, std::ostream& out) {
+  StudyRun run;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    StudyOptions o = base;
+    o.methods = plan[i].second;
+    const std::string label = DomainLabel(maps[i].info().name);
+    o.progress = [&bar, label](std::uint64_t done, std::uint64_t total) {
+      bar.Draw(label, done, total);
+    };
+    run.results.push_back(RunStudy(maps[i], o));
+    run.used.push_back(o);
+    PrintDomain(out, run.results.back(), o);
+    if (!opt.png_dir.empty()) WritePngs(opt.png_dir, run.results.back(), o);
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return run;
+}
+
+void WriteStudyJson(const ToolOptions& opt, const StudyOptions& base, const StudyRun& run) {
+  nlohmann::json j;
+  j["seed"] = opt.seed;
+  j["trials"] = opt.trials;
+  j["runs"] = opt.runs;
+  j["seconds"] = run.seconds;
+  j["error_model"] = {{"source", base.error_model.source},
+                      {"door_correct", base.error_model.door_correct},
+                      {"door_missized", base.error_model.door_missized},
+                      {"door_missed", base.error_model.door_missed},
+                      {"wall_false_door", base.error_model.wall_false_door}};
+  for (std::size_t i = 0; i < run.results.size(); ++i) {
+    j["domains"].push_back(DomainJson(run.results[i], run.used[i]));
+  }
+  std::ofstream f(opt.json_path);
+  if (!f) throw std::runtime_error("cannot write " + opt.json_path);
+  f << j.dump(1) << "\n";
+}
+
+}  // namespace
+
 int RunTool(const ToolOptions& opt, std::ostream& out, std::ostream& err) {
   const std::string root = DataDir();
   std::string current_file;
@@ -338,56 +464,10 @@ int RunTool(const ToolOptions& opt, std::ostream& out, std::ostream& err) {
           << opt.runs << ")\n";
       return kExitBadInput;
     }
-    StudyOptions base;
-    base.trials = opt.trials;
-    base.runs = opt.runs;
-    base.seed = opt.seed;
-    base.threads = opt.threads;
-    current_file = opt.error_model_path.empty() ? root + "/configs/error_model_paper.yaml"
-                                                : opt.error_model_path;
-    base.error_model = LoadErrorModel(current_file);
-    current_file = opt.config_path.empty() ? root + "/configs/study.yaml" : opt.config_path;
-    base.config = LoadStudyConfig(current_file);
-    current_file.clear();
-
-    // (map path, methods) per domain.
-    std::vector<std::pair<std::string, std::vector<MethodSpec>>> plan;
-    if (opt.suite == "paper") {
-      for (const char* name : kSuiteMaps) {
-        std::vector<std::string> ids = {"no-error", "deterministic", "bayes"};
-        if (std::string(name) == "engineering_building_3f") {
-          // §6.6: the heuristics were studied on the Engineering Building only.
-          ids = {"no-error", "none",       "relaxation",    "first-frame", "false-door",
-                 "missized", "full-suite", "deterministic", "bayes"};
-        }
-        std::vector<MethodSpec> methods;
-        for (const auto& id : ids) methods.push_back(ParseMethod(id));
-        plan.push_back({root + "/maps/" + name + ".yaml", methods});
-      }
-    } else if (!opt.suite.empty()) {
-      err << "stickrep-study: unknown suite '" << opt.suite << "' (known: paper)\n";
-      return kExitBadInput;
-    }
-    std::vector<MethodSpec> methods;
-    for (const auto& id : opt.methods.empty()
-                              ? std::vector<std::string>{"no-error", "deterministic", "bayes"}
-                              : opt.methods) {
-      methods.push_back(ParseMethod(id));
-    }
-    for (const auto& m : opt.maps) plan.push_back({m, methods});
-    if (plan.empty()) {
-      err << "stickrep-study: give a map file or --suite paper\n";
-      return kExitBadInput;
-    }
-    std::vector<map::Map> maps;
-    for (const auto& [path, m] : plan) {
-      current_file = path;
-      maps.push_back(map::LoadMap(path));
-      if (maps.back().EdgeCount() == 0) {
-        throw InputError(path, 0, "rings", "the map has no edges: nothing to match against");
-      }
-    }
-    current_file.clear();
+    const StudyOptions base = LoadBaseOptions(opt, root, current_file);
+    const std::optional<StudyPlan> plan = PlanDomains(opt, root, err);
+    if (!plan) return kExitBadInput;
+    const std::vector<map::Map> maps = LoadPlannedMaps(*plan, current_file);
 
     fmt::print(
         out, "stickrep-study: seed {}, {} trials x {} runs, error model '{}', {} thread(s)\n",
@@ -395,43 +475,10 @@ int RunTool(const ToolOptions& opt, std::ostream& out, std::ostream& err) {
         opt.threads > 0 ? opt.threads
                         : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
     ProgressBar bar(opt.progress);
-    std::vector<DomainResult> results;
-    std::vector<StudyOptions> used;
-    const auto t0 = std::chrono::steady_clock::now();
-    for (std::size_t i = 0; i < plan.size(); ++i) {
-      StudyOptions o = base;
-      o.methods = plan[i].second;
-      const std::string label = DomainLabel(maps[i].info().name);
-      o.progress = [&bar, label](std::uint64_t done, std::uint64_t total) {
-        bar.Draw(label, done, total);
-      };
-      results.push_back(RunStudy(maps[i], o));
-      used.push_back(o);
-      PrintDomain(out, results.back(), o);
-      if (!opt.png_dir.empty()) WritePngs(opt.png_dir, results.back(), o);
-    }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    PrintSummary(out, results);
-    fmt::print(out, "\nWhole study: {:.1f} s; seed {}.\n", seconds, opt.seed);
-    if (!opt.json_path.empty()) {
-      nlohmann::json j;
-      j["seed"] = opt.seed;
-      j["trials"] = opt.trials;
-      j["runs"] = opt.runs;
-      j["seconds"] = seconds;
-      j["error_model"] = {{"source", base.error_model.source},
-                          {"door_correct", base.error_model.door_correct},
-                          {"door_missized", base.error_model.door_missized},
-                          {"door_missed", base.error_model.door_missed},
-                          {"wall_false_door", base.error_model.wall_false_door}};
-      for (std::size_t i = 0; i < results.size(); ++i) {
-        j["domains"].push_back(DomainJson(results[i], used[i]));
-      }
-      std::ofstream f(opt.json_path);
-      if (!f) throw std::runtime_error("cannot write " + opt.json_path);
-      f << j.dump(1) << "\n";
-    }
+    const StudyRun run = RunDomains(opt, base, *plan, maps, bar, out);
+    PrintSummary(out, run.results);
+    fmt::print(out, "\nWhole study: {:.1f} s; seed {}.\n", run.seconds, opt.seed);
+    if (!opt.json_path.empty()) WriteStudyJson(opt, base, run);
     return 0;
   } catch (const InputError& e) {
     err << FormatInputError(e.file(), e.line(), e.key(), e.reason()) << "\n";

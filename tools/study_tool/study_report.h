@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "recovery/study.h"
+#include "study_tool/study.h"
 
 namespace stickrep::recovery::report {
 

@@ -1,4 +1,4 @@
-#include "recovery/study.h"
+#include "study_tool/study.h"
 
 #include <gtest/gtest.h>
 

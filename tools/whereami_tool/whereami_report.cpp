@@ -1,4 +1,4 @@
-#include "whereami/whereami_report.h"
+#include "whereami_tool/whereami_report.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -12,9 +12,9 @@
 #include "common/input_error.h"
 #include "common/worker_pool.h"
 #include "localizer/localizer_config.h"
-#include "recovery/study_report.h"
+#include "study_tool/study_report.h"
 #include "stickrep/hallway_view.h"
-#include "stickrep/map_render.h"
+#include "plot/map_render.h"
 
 namespace stickrep::whereami {
 
@@ -101,17 +101,10 @@ std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& option
 
 namespace {
 
-// Measuring mode: the assembled edges' error rates beside Table 6.10, and the error model.
-int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out) {
-  out << fmt::format("Assembled edges against the truth: map '{}', rings {}, seeds {}..{}, {:g} "
-                     "ft each (from 20 ft on)\n",
-                     setup.map->info().name,
-                     options.rings.empty() ? std::string("(the virtual robot's)")
-                                           : fmt::format("{}", fmt::join(options.rings, ", ")),
-                     options.first_seed,
-                     options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
-                     options.measure_ft);
-  EdgeErrorCounts total;
+// Measuring mode, one line per run; the assembled edges' counts added up over the runs that
+// did not fail. Returns the number that failed.
+int TallyMeasuredRuns(const RunSetup& setup, const ToolOptions& options, std::ostream& out,
+                      EdgeErrorCounts& total) {
   int failed = 0;
   for (const RunResult& r : RunSeeds(setup, options)) {
     if (r.failed) {
@@ -130,16 +123,12 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
     }
     total.Add(c);
   }
-  const std::string source =
-      fmt::format("measured by stickrep-whereami on {} ({}), seeds {}..{}, {} true doors, {} true "
-                  "walls",
-                  setup.map->info().name,
-                  options.rings.empty() ? std::string("the virtual robot's ring")
-                                        : fmt::format("{}", fmt::join(options.rings, " ")),
-                  options.first_seed,
-                  options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
-                  total.true_doors, total.true_walls);
-  const recovery::ErrorModel model = total.ToModel(source);
+  return failed;
+}
+
+// The measured rates beside Table 6.10, the walls' length error and the doors by width.
+void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts& total,
+                        std::ostream& out) {
   out << fmt::format("\nper assembled edge (%)             paper Table 6.10   ours\n");
   out << fmt::format("  true doors sensed with their class   {:>8.2f} {:>8.2f}\n", 83.67,
                      100.0 * model.door_correct);
@@ -167,6 +156,31 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
   }
   out << "(Table 6.10 counts frames; ours counts the edges the localizer is given, after the "
          "frames of a door are voted into one edge)\n";
+}
+
+// Measuring mode: the assembled edges' error rates beside Table 6.10, and the error model.
+int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out) {
+  out << fmt::format("Assembled edges against the truth: map '{}', rings {}, seeds {}..{}, {:g} "
+                     "ft each (from 20 ft on)\n",
+                     setup.map->info().name,
+                     options.rings.empty() ? std::string("(the virtual robot's)")
+                                           : fmt::format("{}", fmt::join(options.rings, ", ")),
+                     options.first_seed,
+                     options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
+                     options.measure_ft);
+  EdgeErrorCounts total;
+  const int failed = TallyMeasuredRuns(setup, options, out, total);
+  const std::string source =
+      fmt::format("measured by stickrep-whereami on {} ({}), seeds {}..{}, {} true doors, {} true "
+                  "walls",
+                  setup.map->info().name,
+                  options.rings.empty() ? std::string("the virtual robot's ring")
+                                        : fmt::format("{}", fmt::join(options.rings, " ")),
+                  options.first_seed,
+                  options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
+                  total.true_doors, total.true_walls);
+  const recovery::ErrorModel model = total.ToModel(source);
+  PrintMeasuredRates(model, total, out);
   if (!options.error_model_out.empty()) {
     if (failed > 0 || total.true_doors == 0) {
       out << fmt::format("no error model written: {} runs failed, {} true doors passed\n", failed,
@@ -175,7 +189,9 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
     }
     model.Validate();
     std::ofstream f(options.error_model_out);
-    if (!f) throw InputError(options.error_model_out, 0, "--write-error-model", "cannot be written");
+    if (!f) {
+      throw InputError(options.error_model_out, 0, "--write-error-model", "cannot be written");
+    }
     f << recovery::FormatErrorModelYaml(
         model, "The landmark pipeline's errors per assembled edge, measured on the live logic\n"
                "(stickrep-whereami --measure-ft); schema of configs/error_model_paper.yaml.");
@@ -184,137 +200,162 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
   return 0;
 }
 
+// The tool's input, checked before any run.
+RunSetup LoadCheckedSetup(const ToolOptions& options) {
+  if (options.runs < 1) throw InputError("--runs", 0, "runs", "must be at least 1");
+  RunSetup setup = LoadRunSetup(options.config_dir, options.map_file, options.virtual_robot_file);
+  for (const std::string& ring : options.rings) {
+    if (setup.map->FindRing(ring) < 0) {
+      throw InputError(setup.map_file, 0, "--ring", "no ring '" + ring + "' in the map");
+    }
+  }
+  // Each run reads the observation model's files; a bad one is this tool's input error,
+  // not a failed run.
+  localizer::MakeLocalizerConfig(setup.localizer,
+                                 map::HallwayView(*setup.map, setup.localizer.view).view());
+  return setup;
+}
+
+void PrintRunsHeader(const RunSetup& setup, const ToolOptions& options, std::ostream& out) {
+  out << fmt::format(
+      "Where-am-I runs of the components in one process: map '{}' ({}), seeds {}..{}, {:.0f} in "
+      "hallway, "
+      "start up to {:g} in off the axis and {:g} deg turned; matcher {}{}\n",
+      setup.map->info().name, setup.map_file, options.first_seed,
+      options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
+      setup.virtual_robot.world.hallway_width_in, setup.virtual_robot.start_lateral_offset_max_in,
+      setup.virtual_robot.start_heading_error_max_deg,
+      setup.localizer.localizer.method == localizer::MatchMethod::kBayes ? "bayes"
+                                                                         : "deterministic",
+      options.kidnap_after_s >= 0.0 ? fmt::format(", kidnapped {:g} s after the pose by {:g} in",
+                                                  options.kidnap_after_s, options.kidnap_jump_in)
+                                    : "");
+}
+
+// One run's lines, and its path drawn over the map when asked for.
+void PrintRun(const RunResult& r, const RunSetup& setup, const ToolOptions& options,
+              std::ostream& out) {
+  out << fmt::format("seed {:>4}  start {}\n", r.seed, r.failed ? "-" : r.start);
+  for (const std::string& redraw : r.start_redraws) {
+    out << "            start " << redraw << "\n";
+  }
+  out << fmt::format("            {}: {}", ToString(r.ending()), Describe(r.first));
+  if (r.kidnapped) {
+    out << fmt::format("\n            kidnapped: {}; then {}",
+                       r.lost_detected ? fmt::format("LOST after {:.1f} ft", r.lost_after_ft)
+                                       : std::string("never LOST"),
+                       Describe(r.second));
+  }
+  out << fmt::format(
+      "\n            {} frames, {} doors seen, {} collisions, envelope max "
+      "{:.1f} in / {:.1f} deg; {:.1f} s simulated, {}\n",
+      r.frames, r.doors_observed, r.collisions, r.max_offset_in, r.max_heading_deg, r.sim_s,
+      r.ended);
+  if (options.trace) {
+    out << "            sensed: " << r.sensed_trace << "\n            passed: " << r.true_trace
+        << "\n";
+  }
+  if (options.trace) {
+    for (const std::string& line : r.behaviour_log) out << "            " << line << "\n";
+  }
+  if (!options.path_png.empty() && !r.path.empty()) {
+    map::RenderOptions picture;
+    picture.paths.push_back({r.path});
+    picture.markers.push_back({r.path.front().first, r.path.front().second, "start"});
+    picture.markers.push_back({r.path.back().first, r.path.back().second, ToString(r.ending())});
+    const std::string file = fmt::format("{}_seed{}.png", options.path_png, r.seed);
+    map::RenderMapPng(*setup.map, file, picture);
+    out << "            path drawn in " << file << "\n";
+  }
+}
+
+nlohmann::json RunJson(const RunResult& r) {
+  return {{"seed", r.seed},
+          {"start", r.start},
+          {"first", ToJson(r.first)},
+          {"kidnapped", r.kidnapped},
+          {"lost_detected", r.lost_detected},
+          {"lost_after_ft", r.lost_after_ft},
+          {"second", ToJson(r.second)},
+          {"frames", r.frames},
+          {"doors_observed", r.doors_observed},
+          {"collisions", r.collisions},
+          {"max_offset_in", r.max_offset_in},
+          {"max_heading_deg", r.max_heading_deg},
+          {"sim_s", r.sim_s},
+          {"ended", r.ended},
+          {"ending", ToString(r.ending())},
+          {"sensed", r.sensed_trace},
+          {"drops", r.drops},
+          {"start_redraws", r.start_redraws}};
+}
+
+// The runs added up, beside the paper's Table 6.22 where it has the map.
+void PrintSummary(const Summary& s, const RunSetup& setup, std::ostream& out) {
+  out << fmt::format(
+      "\n{} runs: {} localized, {} correct ({:.1f} %); {} collisions; envelope beyond 8 ft of "
+      "corners after 20 ft: max |offset| {:.1f} in, max |heading error| {:.1f} deg\n",
+      s.runs, s.localized, s.correct, 100.0 * s.correct / s.runs, s.collisions, s.max_offset_in,
+      s.max_heading_deg);
+  std::vector<std::string> endings;
+  for (const Ending e : {Ending::kCorrect, Ending::kWrong, Ending::kNoneInTime, Ending::kCollision,
+                         Ending::kFailed}) {
+    const auto it = s.endings.find(e);
+    endings.push_back(fmt::format("{} {}", it == s.endings.end() ? 0 : it->second, ToString(e)));
+  }
+  out << fmt::format("endings: {}; {} starts against a wall drawn again\n",
+                     fmt::join(endings, ", "), s.start_redraws);
+  if (s.kidnapped > 0) {
+    out << fmt::format("kidnapped {}: LOST detected {}, recovered correctly {}\n", s.kidnapped,
+                       s.lost_detected, s.recovered_correct);
+  }
+  out << fmt::format("\n{:<34} {:>7} {:>12} {:>8} {:>11}\n", "", "edges", "distance ft", "time s",
+                     "accuracy %");
+  out << fmt::format("{:<34} {:>7.2f} {:>12.2f} {:>8.2f} {:>11.1f}\n",
+                     "ours: rendered frames, live logic", s.mean_edges, s.mean_distance_ft,
+                     s.mean_time_s, 100.0 * s.correct / s.runs);
+  if (const auto paper =
+          recovery::report::PaperSummaryFor(setup.map->info().name, /*with_error=*/true)) {
+    out << fmt::format("{:<34} {:>7.2f} {:>12.2f} {:>8.2f} {:>11.1f}\n",
+                       "paper Table 6.22, modeled error", paper->edges, paper->distance_ft,
+                       paper->time_s, paper->accuracy_pct);
+  }
+  out << "(edges: the localizer's sequence when it declared the pose; distance and time: "
+         "travelled from the start, aligning and turns included; accuracy over all runs)\n";
+}
+
+void WriteRunsJson(const std::string& path, const RunSetup& setup, const ToolOptions& options,
+                   const nlohmann::json& runs, const Summary& s) {
+  std::ofstream f(path);
+  if (!f) throw InputError(path, 0, "--json", "cannot be written");
+  f << nlohmann::json{{"map", setup.map->info().name},
+                      {"first_seed", options.first_seed},
+                      {"runs", runs},
+                      {"correct", s.correct},
+                      {"localized", s.localized},
+                      {"mean_edges", s.mean_edges},
+                      {"mean_distance_ft", s.mean_distance_ft},
+                      {"mean_time_s", s.mean_time_s}}
+           .dump(2)
+    << "\n";
+}
+
 }  // namespace
 
 int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
   try {
-    if (options.runs < 1) throw InputError("--runs", 0, "runs", "must be at least 1");
-    const RunSetup setup =
-        LoadRunSetup(options.config_dir, options.map_file, options.virtual_robot_file);
-    for (const std::string& ring : options.rings) {
-      if (setup.map->FindRing(ring) < 0) {
-        throw InputError(setup.map_file, 0, "--ring", "no ring '" + ring + "' in the map");
-      }
-    }
-    // Each run reads the observation model's files; a bad one is this tool's input error,
-    // not a failed run.
-    localizer::MakeLocalizerConfig(setup.localizer,
-                                   map::HallwayView(*setup.map, setup.localizer.view).view());
+    const RunSetup setup = LoadCheckedSetup(options);
     if (options.measure_ft > 0.0) return Measure(setup, options, out);
-    out << fmt::format(
-        "Where-am-I runs of the components in one process: map '{}' ({}), seeds {}..{}, {:.0f} in hallway, "
-        "start up to {:g} in off the axis and {:g} deg turned; matcher {}{}\n",
-        setup.map->info().name, setup.map_file, options.first_seed,
-        options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
-        setup.virtual_robot.world.hallway_width_in,
-        setup.virtual_robot.start_lateral_offset_max_in,
-        setup.virtual_robot.start_heading_error_max_deg,
-        setup.localizer.localizer.method == localizer::MatchMethod::kBayes ? "bayes"
-                                                                           : "deterministic",
-        options.kidnap_after_s >= 0.0
-            ? fmt::format(", kidnapped {:g} s after the pose by {:g} in", options.kidnap_after_s,
-                          options.kidnap_jump_in)
-            : "");
+    PrintRunsHeader(setup, options, out);
     const std::vector<RunResult> results = RunSeeds(setup, options);
     nlohmann::json runs = nlohmann::json::array();
     for (const RunResult& r : results) {
-      out << fmt::format("seed {:>4}  start {}\n", r.seed, r.failed ? "-" : r.start);
-      for (const std::string& redraw : r.start_redraws) {
-        out << "            start " << redraw << "\n";
-      }
-      out << fmt::format("            {}: {}", ToString(r.ending()), Describe(r.first));
-      if (r.kidnapped) {
-        out << fmt::format("\n            kidnapped: {}; then {}",
-                           r.lost_detected
-                               ? fmt::format("LOST after {:.1f} ft", r.lost_after_ft)
-                               : std::string("never LOST"),
-                           Describe(r.second));
-      }
-      out << fmt::format("\n            {} frames, {} doors seen, {} collisions, envelope max "
-                         "{:.1f} in / {:.1f} deg; {:.1f} s simulated, {}\n",
-                         r.frames, r.doors_observed, r.collisions, r.max_offset_in,
-                         r.max_heading_deg, r.sim_s, r.ended);
-      if (options.trace) {
-        out << "            sensed: " << r.sensed_trace << "\n            passed: " << r.true_trace
-            << "\n";
-      }
-      if (options.trace) {
-        for (const std::string& line : r.behaviour_log) out << "            " << line << "\n";
-      }
-      if (!options.path_png.empty() && !r.path.empty()) {
-        map::RenderOptions picture;
-        picture.paths.push_back({r.path});
-        picture.markers.push_back({r.path.front().first, r.path.front().second, "start"});
-        picture.markers.push_back({r.path.back().first, r.path.back().second,
-                                   ToString(r.ending())});
-        const std::string file = fmt::format("{}_seed{}.png", options.path_png, r.seed);
-        map::RenderMapPng(*setup.map, file, picture);
-        out << "            path drawn in " << file << "\n";
-      }
-      runs.push_back({{"seed", r.seed},
-                      {"start", r.start},
-                      {"first", ToJson(r.first)},
-                      {"kidnapped", r.kidnapped},
-                      {"lost_detected", r.lost_detected},
-                      {"lost_after_ft", r.lost_after_ft},
-                      {"second", ToJson(r.second)},
-                      {"frames", r.frames},
-                      {"doors_observed", r.doors_observed},
-                      {"collisions", r.collisions},
-                      {"max_offset_in", r.max_offset_in},
-                      {"max_heading_deg", r.max_heading_deg},
-                      {"sim_s", r.sim_s},
-                      {"ended", r.ended},
-                      {"ending", ToString(r.ending())},
-                      {"sensed", r.sensed_trace},
-                      {"drops", r.drops},
-                      {"start_redraws", r.start_redraws}});
+      PrintRun(r, setup, options, out);
+      runs.push_back(RunJson(r));
     }
     const Summary s = Summarize(results);
-    out << fmt::format(
-        "\n{} runs: {} localized, {} correct ({:.1f} %); {} collisions; envelope beyond 8 ft of "
-        "corners after 20 ft: max |offset| {:.1f} in, max |heading error| {:.1f} deg\n",
-        s.runs, s.localized, s.correct, 100.0 * s.correct / s.runs, s.collisions,
-        s.max_offset_in, s.max_heading_deg);
-    std::vector<std::string> endings;
-    for (const Ending e : {Ending::kCorrect, Ending::kWrong, Ending::kNoneInTime,
-                           Ending::kCollision, Ending::kFailed}) {
-      const auto it = s.endings.find(e);
-      endings.push_back(fmt::format("{} {}", it == s.endings.end() ? 0 : it->second, ToString(e)));
-    }
-    out << fmt::format("endings: {}; {} starts against a wall drawn again\n",
-                       fmt::join(endings, ", "), s.start_redraws);
-    if (s.kidnapped > 0) {
-      out << fmt::format("kidnapped {}: LOST detected {}, recovered correctly {}\n", s.kidnapped,
-                         s.lost_detected, s.recovered_correct);
-    }
-    out << fmt::format("\n{:<34} {:>7} {:>12} {:>8} {:>11}\n", "", "edges", "distance ft",
-                       "time s", "accuracy %");
-    out << fmt::format("{:<34} {:>7.2f} {:>12.2f} {:>8.2f} {:>11.1f}\n",
-                       "ours: rendered frames, live logic", s.mean_edges, s.mean_distance_ft,
-                       s.mean_time_s, 100.0 * s.correct / s.runs);
-    if (const auto paper =
-            recovery::report::PaperSummaryFor(setup.map->info().name, /*with_error=*/true)) {
-      out << fmt::format("{:<34} {:>7.2f} {:>12.2f} {:>8.2f} {:>11.1f}\n",
-                         "paper Table 6.22, modeled error", paper->edges, paper->distance_ft,
-                         paper->time_s, paper->accuracy_pct);
-    }
-    out << "(edges: the localizer's sequence when it declared the pose; distance and time: "
-           "travelled from the start, aligning and turns included; accuracy over all runs)\n";
-    if (!options.json_path.empty()) {
-      std::ofstream f(options.json_path);
-      if (!f) throw InputError(options.json_path, 0, "--json", "cannot be written");
-      f << nlohmann::json{{"map", setup.map->info().name},
-                          {"first_seed", options.first_seed},
-                          {"runs", runs},
-                          {"correct", s.correct},
-                          {"localized", s.localized},
-                          {"mean_edges", s.mean_edges},
-                          {"mean_distance_ft", s.mean_distance_ft},
-                          {"mean_time_s", s.mean_time_s}}
-               .dump(2)
-        << "\n";
-    }
+    PrintSummary(s, setup, out);
+    if (!options.json_path.empty()) WriteRunsJson(options.json_path, setup, options, runs, s);
     return 0;
   } catch (const InputError& e) {
     err << e.what() << "\n";
