@@ -234,14 +234,7 @@ bool PoseRecovery::Recover(const SensedEdge& failing) {
       if (TryRemoveDoors()) return true;
       const int levels = static_cast<int>(config_.relaxation_steps.size());
       for (int level = level_ + 1; level <= levels; ++level) {
-        SetLevel(level);
-        const std::size_t n = Rematch();
-        if (n > 0) {
-          status_ = StatusFor(n);
-          last_event_ = RecoveryEvent::kRelaxed;
-          return true;
-        }
-        if (TryRemoveDoors()) return true;
+        if (RematchAtLevel(level) || TryRemoveDoors()) return true;
       }
       return false;
     }
@@ -253,15 +246,18 @@ bool PoseRecovery::TryRaiseLevel(bool walls_too) {
   (void)walls_too;  // SetLevel() knows from the strategy which metrics it relaxes
   const int levels = static_cast<int>(config_.relaxation_steps.size());
   for (int level = level_ + 1; level <= levels; ++level) {
-    SetLevel(level);
-    const std::size_t n = Rematch();
-    if (n > 0) {
-      status_ = StatusFor(n);
-      last_event_ = RecoveryEvent::kRelaxed;
-      return true;
-    }
+    if (RematchAtLevel(level)) return true;
   }
   return false;
+}
+
+bool PoseRecovery::RematchAtLevel(int level) {
+  SetLevel(level);
+  const std::size_t n = Rematch();
+  if (n == 0) return false;
+  status_ = StatusFor(n);
+  last_event_ = RecoveryEvent::kRelaxed;
+  return true;
 }
 
 bool PoseRecovery::TryRemoveDoors() {

@@ -130,6 +130,8 @@ class PoseRecovery {
   bool Recover(const map::SensedEdge& failing);
   void Restart(const map::SensedEdge& failing);
   bool TryRaiseLevel(bool walls_too);
+  // Sets the relaxation level and matches again: true (and RELAXED) when some place fits.
+  bool RematchAtLevel(int level);
   bool TryRemoveDoors();
 
   const map::MatchIndex& index_;

@@ -48,6 +48,24 @@ class WriterCountingListener : public eprosima::fastdds::dds::DataWriterListener
 
 // A typed writer on one topic with the topic's catalogued QoS. `PubSubType` is the
 // fastddsgen support class; every StickRep sample has a `header` that Publish() stamps.
+// The part every reader's listener shares: wakes the executor when data arrives and keeps
+// the count of matched writers. Each reader adds what it does on a missed deadline or a
+// change of liveliness.
+class ReaderListener : public eprosima::fastdds::dds::DataReaderListener {
+ public:
+  ReaderListener(Executor& executor, EndpointCounters& counters)
+      : executor_(executor), counters_(counters) {}
+  void on_data_available(eprosima::fastdds::dds::DataReader*) override { executor_.Notify(); }
+  void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
+                               const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
+    counters_.matched = s.current_count;
+  }
+
+ private:
+  Executor& executor_;
+  EndpointCounters& counters_;
+};
+
 template <typename PubSubType>
 class Writer {
  public:
@@ -156,14 +174,9 @@ class Reader : public Drainable {
   }
 
  private:
-  class Listener : public eprosima::fastdds::dds::DataReaderListener {
+  class Listener : public ReaderListener {
    public:
-    explicit Listener(Reader& r) : r_(r) {}
-    void on_data_available(eprosima::fastdds::dds::DataReader*) override { r_.executor_.Notify(); }
-    void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
-                                 const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
-      r_.counters_.matched = s.current_count;
-    }
+    explicit Listener(Reader& r) : ReaderListener(r.executor_, r.counters_), r_(r) {}
     void on_requested_deadline_missed(
         eprosima::fastdds::dds::DataReader*,
         const eprosima::fastdds::dds::RequestedDeadlineMissedStatus&) override {

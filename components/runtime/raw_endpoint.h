@@ -82,14 +82,9 @@ class RawReader : public Drainable {
   std::vector<std::string> writers_lost() const;
 
  private:
-  class Listener : public eprosima::fastdds::dds::DataReaderListener {
+  class Listener : public ReaderListener {
    public:
-    explicit Listener(RawReader& r) : r_(r) {}
-    void on_data_available(eprosima::fastdds::dds::DataReader*) override { r_.executor_.Notify(); }
-    void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
-                                 const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
-      r_.counters_.matched = s.current_count;
-    }
+    explicit Listener(RawReader& r) : ReaderListener(r.executor_, r.counters_), r_(r) {}
     void on_requested_deadline_missed(
         eprosima::fastdds::dds::DataReader*,
         const eprosima::fastdds::dds::RequestedDeadlineMissedStatus& s) override;
