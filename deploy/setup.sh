@@ -28,7 +28,7 @@ if ((${#missing[@]})); then
 fi
 
 # Two cores: build with -j2. Generated IDL code is rebuilt only when an .idl file changes.
-cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo > build.configure.log 2>&1 ||
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.configure.log 2>&1 ||
   { cat build.configure.log; exit 1; }
 rm -f build.configure.log
 # `main`: only what the main job runs (the processes and stickrep-launch), for a first
