@@ -12,22 +12,10 @@
 namespace stickrep::map {
 namespace {
 
+using testing::EditedBoxMap;
 using testing::kBoxMapYaml;
 using testing::kCorridorMapYaml;
-
-// The box map with `from` replaced by `to` (the text must contain `from`).
-std::string Edited(const std::string& from, const std::string& to) {
-  std::string text = kBoxMapYaml;
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
-
-// 1-based line of the first occurrence of `needle` in `text`.
-int LineOf(const std::string& text, const std::string& needle) {
-  const auto at = text.find(needle);
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
-}
+using testing::LineOf;
 
 InputError ParseError(const std::string& text) {
   try {
@@ -77,55 +65,55 @@ TEST(MapIoTest, MalformedYamlIsReportedWithItsLine) {
 }
 
 TEST(MapIoTest, MissingKeyNamesTheKey) {
-  const std::string text = Edited("    closed: true\n", "");
+  const std::string text = EditedBoxMap("    closed: true\n", "");
   const InputError e = ParseError(text);
   EXPECT_EQ(e.key(), "rings[0].closed");
   EXPECT_NE(e.reason().find("missing"), std::string::npos);
 }
 
 TEST(MapIoTest, NegativeWallLengthIsRejectedAtItsLine) {
-  const std::string text = Edited("metric_in: 24}", "metric_in: -24}");
+  const std::string text = EditedBoxMap("metric_in: 24}", "metric_in: -24}");
   const InputError e = ParseError(text);
   EXPECT_EQ(e.line(), LineOf(text, "metric_in: -24"));
   EXPECT_NE(e.reason().find("> 0"), std::string::npos);
 }
 
 TEST(MapIoTest, ZeroWallLengthIsRejected) {
-  const InputError e = ParseError(Edited("metric_in: 24}", "metric_in: 0}"));
+  const InputError e = ParseError(EditedBoxMap("metric_in: 24}", "metric_in: 0}"));
   EXPECT_NE(e.reason().find("> 0"), std::string::npos);
 }
 
 TEST(MapIoTest, IllegalDoorClassIsRejected) {
-  const std::string text = Edited("class: \"36\"", "class: \"34\"");
+  const std::string text = EditedBoxMap("class: \"36\"", "class: \"34\"");
   const InputError e = ParseError(text);
   EXPECT_EQ(e.line(), LineOf(text, "class: \"34\""));
   EXPECT_NE(e.reason().find("not a legal door width"), std::string::npos);
 }
 
 TEST(MapIoTest, DoorMetricMustEqualItsClassWidth) {
-  const InputError e = ParseError(Edited("class: \"36\"", "class: \"36\", metric_in: 40"));
+  const InputError e = ParseError(EditedBoxMap("class: \"36\"", "class: \"36\", metric_in: 40"));
   EXPECT_NE(e.reason().find("36 in wide"), std::string::npos);
 }
 
 TEST(MapIoTest, DanglingJoinIsRejected) {
-  const std::string text = Edited("to_ring: box", "to_ring: nowhere");
+  const std::string text = EditedBoxMap("to_ring: box", "to_ring: nowhere");
   const InputError e = ParseError(text);
   EXPECT_EQ(e.line(), LineOf(text, "to_ring: nowhere"));
   EXPECT_NE(e.reason().find("no ring with id 'nowhere'"), std::string::npos);
 }
 
 TEST(MapIoTest, JoinAtANodeThatIsNotArtificialIsRejected) {
-  const InputError e = ParseError(Edited("{ring: strip, node: 0", "{ring: strip, node: 1"));
+  const InputError e = ParseError(EditedBoxMap("{ring: strip, node: 0", "{ring: strip, node: 1"));
   EXPECT_NE(e.reason().find("not artificial"), std::string::npos);
 }
 
 TEST(MapIoTest, JoinNodeOutOfRangeIsRejected) {
-  const InputError e = ParseError(Edited("to_node: 0}", "to_node: 6}"));
+  const InputError e = ParseError(EditedBoxMap("to_node: 0}", "to_node: 6}"));
   EXPECT_NE(e.reason().find("outside"), std::string::npos);
 }
 
 TEST(MapIoTest, UnknownKeyIsRejected) {
-  const std::string text = Edited("metric_in: 40}", "metric_in: 40, colour: red}");
+  const std::string text = EditedBoxMap("metric_in: 40}", "metric_in: 40, colour: red}");
   const InputError e = ParseError(text);
   EXPECT_EQ(e.line(), LineOf(text, "colour"));
   EXPECT_NE(e.reason().find("unknown key"), std::string::npos);
@@ -133,28 +121,28 @@ TEST(MapIoTest, UnknownKeyIsRejected) {
 
 TEST(MapIoTest, AngleOutOfRangeIsRejected) {
   const InputError e = ParseError(
-      Edited("angle_deg: 90, xyz_in: [100, 0, 0]", "angle_deg: 400, xyz_in: [100, 0, 0]"));
+      EditedBoxMap("angle_deg: 90, xyz_in: [100, 0, 0]", "angle_deg: 400, xyz_in: [100, 0, 0]"));
   EXPECT_NE(e.reason().find("outside [0, 360]"), std::string::npos);
 }
 
 TEST(MapIoTest, DuplicateRingIdIsRejected) {
-  const InputError e = ParseError(Edited("  - id: strip", "  - id: box"));
+  const InputError e = ParseError(EditedBoxMap("  - id: strip", "  - id: box"));
   EXPECT_NE(e.reason().find("used by an earlier ring"), std::string::npos);
 }
 
 TEST(MapIoTest, ClosedRingThatDoesNotCloseIsRejected) {
-  const InputError e = ParseError(Edited("xyz_in: [0, 0, 0]}", "xyz_in: [0, 20, 0]}"));
+  const InputError e = ParseError(EditedBoxMap("xyz_in: [0, 0, 0]}", "xyz_in: [0, 20, 0]}"));
   EXPECT_NE(e.reason().find("nodes are"), std::string::npos);
 }
 
 TEST(MapIoTest, OpenRingMustEndWithANode) {
-  const std::string text = Edited("      - node: {angle_deg: 180, xyz_in: [82, 200, 0]}\n", "");
+  const std::string text = EditedBoxMap("      - node: {angle_deg: 180, xyz_in: [82, 200, 0]}\n", "");
   const InputError e = ParseError(text);
   EXPECT_NE(e.reason().find("open ring ends with a node"), std::string::npos);
 }
 
 TEST(MapIoTest, NodesAndEdgesMustAlternate) {
-  const InputError e = ParseError(Edited("      - edge: {type: hallway, metric_in: 50}\n",
+  const InputError e = ParseError(EditedBoxMap("      - edge: {type: hallway, metric_in: 50}\n",
                                          "      - edge: {type: hallway, metric_in: 25}\n      - "
                                          "edge: {type: hallway, metric_in: 25}\n"));
   EXPECT_NE(e.reason().find("alternate"), std::string::npos);
@@ -162,13 +150,13 @@ TEST(MapIoTest, NodesAndEdgesMustAlternate) {
 
 TEST(MapIoTest, UnknownEdgeTypeIsRejected) {
   const InputError e =
-      ParseError(Edited("type: hallway, metric_in: 40", "type: window, metric_in: 40"));
+      ParseError(EditedBoxMap("type: hallway, metric_in: 40", "type: window, metric_in: 40"));
   EXPECT_NE(e.reason().find("unknown edge type"), std::string::npos);
 }
 
 TEST(MapIoTest, WrongFormatVersionIsRejected) {
-  EXPECT_EQ(ParseError(Edited("stickrep_map: 1", "stickrep_map: 3")).key(), "stickrep_map");
-  EXPECT_EQ(ParseError(Edited("stickrep_map: 1", "stickrep_map: 0")).key(), "stickrep_map");
+  EXPECT_EQ(ParseError(EditedBoxMap("stickrep_map: 1", "stickrep_map: 3")).key(), "stickrep_map");
+  EXPECT_EQ(ParseError(EditedBoxMap("stickrep_map: 1", "stickrep_map: 0")).key(), "stickrep_map");
 }
 
 
@@ -212,7 +200,7 @@ TEST(MapIoTest, Format2MistakesNameTheKey) {
   // Format 2 features in a format 1 file.
   e = ParseError(edited("stickrep_map: 2", "stickrep_map: 1"));
   EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
-  e = ParseError(Edited("{type: hallway, metric_in: 24}", "{type: opening, metric_in: 24}"));
+  e = ParseError(EditedBoxMap("{type: hallway, metric_in: 24}", "{type: opening, metric_in: 24}"));
   EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
 }
 

@@ -2,6 +2,8 @@
 
 // Small hand-made maps shared by the map library's tests.
 
+#include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace stickrep::map::testing {
@@ -72,5 +74,20 @@ rings:
       - node: {angle_deg: 270, xyz_in: [0, 0, 0]}
       - edge: {type: hallway, metric_in: 96}
 )";
+
+// The box map with `from` replaced by `to`; throws (failing the test) when the map has no
+// `from`, so a test never checks an edit that was not made.
+inline std::string EditedBoxMap(const std::string& from, const std::string& to) {
+  std::string text = kBoxMapYaml;
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::invalid_argument("the box map has no '" + from + "'");
+  return text.replace(at, from.size(), to);
+}
+
+// 1-based line of the first occurrence of `needle` in `text`.
+inline int LineOf(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
 
 }  // namespace stickrep::map::testing

@@ -6,16 +6,12 @@
 
 #include <string>
 
+#include "whereami/test_setup.h"
 
 namespace stickrep::whereami {
 namespace {
 
-const std::string kSmallMap = std::string(STICKREP_SOURCE_DIR) + "/test/maps/wing1_corridor.yaml";
-
-const RunSetup& SmallMapSetup() {
-  static const RunSetup setup = LoadRunSetup("", kSmallMap);
-  return setup;
-}
+using testing::SmallMapSetup;
 
 TEST(WhereAmIRunTest, SeededStartsOnTheSmallMapRecoverTheTruePose) {
   for (std::uint64_t seed : {5, 6, 7, 8}) {

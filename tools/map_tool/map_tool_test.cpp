@@ -15,21 +15,9 @@
 namespace stickrep::map {
 namespace {
 
+using testing::EditedBoxMap;
 using testing::kBoxMapYaml;
-
-// The box map with `from` replaced by `to` (the text must contain `from`).
-std::string Edited(const std::string& from, const std::string& to) {
-  std::string text = kBoxMapYaml;
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
-
-// 1-based line of the first occurrence of `needle` in `text`.
-int LineOf(const std::string& text, const std::string& needle) {
-  const auto at = text.find(needle);
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
-}
+using testing::LineOf;
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + name;
@@ -38,7 +26,7 @@ std::string WriteTemp(const std::string& name, const std::string& text) {
 }
 
 TEST(MapToolTest, ValidateExitsTwoWithFileLineKeyAndReason) {
-  const std::string text = Edited("class: \"36\"", "class: \"34\"");
+  const std::string text = EditedBoxMap("class: \"36\"", "class: \"34\"");
   const std::string path = WriteTemp("illegal_class.yaml", text);
   std::ostringstream out, err;
   EXPECT_EQ(tool::Validate({path}, out, err), kExitBadInput);
@@ -82,7 +70,7 @@ TEST(MapToolTest, BinaryGarbageUnderTheSizeLimitExitsTwo) {
 }
 
 TEST(MapToolTest, EveryCommandThatLoadsAMapExitsTwoOnABadOne) {
-  const std::string path = WriteTemp("dangling.yaml", Edited("to_ring: box", "to_ring: nowhere"));
+  const std::string path = WriteTemp("dangling.yaml", EditedBoxMap("to_ring: box", "to_ring: nowhere"));
   std::ostringstream out, err;
   EXPECT_EQ(tool::Census(path, false, std::nullopt, out, err), kExitBadInput);
   EXPECT_EQ(tool::Ambiguity(path, {}, out, err), kExitBadInput);

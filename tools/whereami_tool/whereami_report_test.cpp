@@ -9,16 +9,13 @@
 #include <vector>
 
 #include "common/input_error.h"
+#include "whereami/test_setup.h"
 
 namespace stickrep::whereami {
 namespace {
 
-const std::string kSmallMap = std::string(STICKREP_SOURCE_DIR) + "/test/maps/wing1_corridor.yaml";
-
-const RunSetup& SmallMapSetup() {
-  static const RunSetup setup = LoadRunSetup("", kSmallMap);
-  return setup;
-}
+using testing::kSmallMap;
+using testing::SmallMapSetup;
 
 TEST(WhereAmIBatchTest, StartsAgainstAWallAreDrawnAgainAndLogged) {
   RunSetup setup = SmallMapSetup();
