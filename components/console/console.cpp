@@ -29,9 +29,7 @@ namespace {
 
 using Session = DomainSession;
 
-Session Join(const ConsoleOptions& o) {
-  return JoinDomain(o.system_file, o.domain_id, o.deployment, "stickrep-console", o.wait_s);
-}
+Session Join(const ConsoleOptions& o) { return JoinAsConsole(o); }
 
 std::string Seconds(double s) { return s <= 0.0 ? "-" : fmt::format("{:g} s", s); }
 
@@ -61,12 +59,13 @@ std::unique_ptr<runtime::RawReader> ReadRaw(Session& s, runtime::Executor& ex,
 
 DomainSession JoinDomain(const std::string& system_file, int domain_id,
                          const runtime::DeploymentOptions& deployment, const std::string& name,
-                         double wait_s, double announcement_period_s) {
+                         double wait_s, double announcement_period_s, bool shared_memory) {
   DomainSession s;
   s.system = runtime::SystemConfig::LoadFile(system_file);
   if (domain_id >= 0) s.system.domain_id = domain_id;
   runtime::ParticipantConfig config = runtime::MakeParticipantConfig(s.system, deployment, name);
   config.announcement_period_s = announcement_period_s;
+  config.shared_memory = shared_memory;
   s.participant = std::make_unique<runtime::Participant>(
       config, runtime::QosCatalog::LoadFile(s.system.qos_file));
   s.listener = &s.participant->discovery();
@@ -81,6 +80,11 @@ DomainSession JoinDomain(const std::string& system_file, int domain_id,
     }
   }
   return s;
+}
+
+DomainSession JoinAsConsole(const ConsoleOptions& o) {
+  return JoinDomain(o.system_file, o.domain_id, o.deployment, "stickrep-console", o.wait_s,
+                    /*announcement_period_s=*/0.0, /*shared_memory=*/false);
 }
 
 namespace {

@@ -44,9 +44,15 @@ struct DomainSession {
 // Joins the domain of `system_file` (or `domain_id` when >= 0) as `name`; through a
 // discovery server, waits (at most max(5 s, wait_s)) until one is reached and says so on
 // stderr when none is. Throws InputError for bad settings.
+// `shared_memory` false: UDP only (runtime::ParticipantConfig::shared_memory).
 DomainSession JoinDomain(const std::string& system_file, int domain_id,
                          const runtime::DeploymentOptions& deployment, const std::string& name,
-                         double wait_s, double announcement_period_s = 0.0);
+                         double wait_s, double announcement_period_s = 0.0,
+                         bool shared_memory = true);
+
+// Joins as "stickrep-console", over UDP only: a console stopped or slow on the robot's own
+// computer must not hold up the robot's writers through a full shared-memory port.
+DomainSession JoinAsConsole(const ConsoleOptions& o);
 
 // `list`: every topic seen on the domain with its type, writer and reader counts and QoS.
 // Returns the process exit code.

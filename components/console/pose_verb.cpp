@@ -177,8 +177,7 @@ int WritePicture(const ConsoleOptions& o, const PoseInputs& in, std::ostream& ou
 
 int ShowPose(const ConsoleOptions& o, std::ostream& out) {
   if (!o.png.empty()) CheckPngPath(o.png);
-  DomainSession s =
-      JoinDomain(o.system_file, o.domain_id, o.deployment, "stickrep-console", o.wait_s);
+  DomainSession s = JoinAsConsole(o);
   runtime::Executor ex;
   PoseInputs in(*s.participant, ex);
   const bool need_map = !o.json || !o.png.empty();

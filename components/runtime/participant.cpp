@@ -5,6 +5,7 @@
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
 #include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <tinyxml2.h>
 
 #include <filesystem>
@@ -149,6 +150,14 @@ dds::DomainParticipantQos Participant::LoadQos() {
         factory->get_participant_qos_from_profile(name, pqos) != ReturnCode_t::RETCODE_OK) {
       throw InputError(config_.profile_xml, 0, name,
                        "no participant profile with this name in the XML file");
+    }
+  }
+  auto& transport = pqos.transport();
+  if (!config_.shared_memory && transport.use_builtin_transports) {
+    transport.use_builtin_transports = false;
+    if (transport.user_transports.empty()) {
+      transport.user_transports.push_back(
+          std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>());
     }
   }
   auto& discovery = pqos.wire_protocol().builtin.discovery_config;

@@ -36,6 +36,11 @@ struct ParticipantConfig {
   // participant that joins a running domain and must be found at once (the recorder) uses
   // a short period: a participant that appears later learns of it within that time.
   double announcement_period_s = 0.0;
+  // Shared memory beside UDP, as Fast DDS has it by default. An observer of the robot's
+  // streams (the console, the recorder) turns it off: a stopped observer's full
+  // shared-memory port held every writing process up for seconds, where a full UDP socket
+  // only loses that observer's samples. A profile that names its own transports keeps them.
+  bool shared_memory = true;
 };
 
 // Checks that a Fast DDS XML profile file exists and is well-formed XML; throws InputError
