@@ -5,20 +5,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/quantile.h"
 #include "common/units.h"
 
 namespace stickrep::locomotion {
 namespace {
 
 double WrapPi(double a) { return std::remainder(a, 2.0 * kPi); }
-
-double Median(std::vector<double> v) {
-  const std::size_t n = v.size();
-  std::nth_element(v.begin(), v.begin() + n / 2, v.end());
-  const double upper = v[n / 2];
-  if (n % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + n / 2));
-}
 
 // One valid reading on a side, with its bearing.
 struct Reading {

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "common/input_error.h"
+#include "common/quantile.h"
 #include "console/message_types.h"
 
 namespace stickrep::recording {
@@ -54,13 +55,6 @@ QosProfile RecordedQos(const bag::TopicInfo& t, const std::string& file) {
                        ? QosProfile::PublishMode::kAsynchronous
                        : QosProfile::PublishMode::kSynchronous;
   return q;
-}
-
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(p * (v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
 }
 
 }  // namespace
@@ -147,8 +141,8 @@ void Replayer::Run(SentCallback on_sent) {
   } while (options_.loop && !stop_);
   report_.finished = !stop_;
   report_.duration_s = std::chrono::duration<double>(Clock::now() - start).count();
-  report_.error_p50_ms = Percentile(errors_ms, 0.50);
-  report_.error_p99_ms = Percentile(errors_ms, 0.99);
+  report_.error_p50_ms = Quantile(errors_ms, 0.50);
+  report_.error_p99_ms = Quantile(errors_ms, 0.99);
   report_.error_max_ms =
       errors_ms.empty() ? 0.0 : *std::max_element(errors_ms.begin(), errors_ms.end());
   done_ = true;

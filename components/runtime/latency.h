@@ -2,9 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <string>
 #include <vector>
+
+#include "common/quantile.h"
 
 namespace stickrep::runtime {
 
@@ -17,10 +18,8 @@ class LatencyLog {
   // "median 1.8 ms, p99 6.8 ms over 45", or "none" before the first.
   std::string Summary() const {
     if (ms_.empty()) return "none";
-    std::vector<double> v = ms_;
-    std::sort(v.begin(), v.end());
-    const auto at = [&](double q) { return v[static_cast<std::size_t>(q * (v.size() - 1) + 0.5)]; };
-    return fmt::format("median {:.2f} ms, p99 {:.2f} ms over {}", at(0.5), at(0.99), v.size());
+    return fmt::format("median {:.2f} ms, p99 {:.2f} ms over {}", Quantile(ms_, 0.5),
+                       Quantile(ms_, 0.99), ms_.size());
   }
 
  private:

@@ -6,6 +6,8 @@
 #include <set>
 #include <utility>
 
+#include "common/quantile.h"
+
 namespace stickrep::runtime::bench {
 
 void CaseResult::Merge(const CaseResult& other) {
@@ -18,8 +20,8 @@ void CaseResult::Merge(const CaseResult& other) {
 }
 
 void CaseResult::Summarise() {
-  p50_us = Percentile(one_way_us, 0.50);
-  p99_us = Percentile(one_way_us, 0.99);
+  p50_us = Quantile(one_way_us, 0.50);
+  p99_us = Quantile(one_way_us, 0.99);
 }
 
 double CaseResult::PongsPerSecond() const {
@@ -28,12 +30,6 @@ double CaseResult::PongsPerSecond() const {
 
 double CaseResult::PayloadMegabytesPerSecond() const {
   return PongsPerSecond() * static_cast<double>(bytes) / 1e6;
-}
-
-double Percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5)];
 }
 
 std::optional<double> MedianOverheadPercent(const std::vector<CaseResult>& results,

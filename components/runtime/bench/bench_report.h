@@ -49,8 +49,6 @@ struct RunInfo {
   double sample_timeout_s = 0.0;
 };
 
-// The value at quantile q (0..1) of `values` (nearest rank); 0 if empty.
-double Percentile(std::vector<double> values, double q);
 
 // (runtime p50 - raw p50) / raw p50 in % for the case's profile and size, if both ran.
 std::optional<double> MedianOverheadPercent(const std::vector<CaseResult>& results,
