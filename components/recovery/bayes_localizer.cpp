@@ -27,7 +27,8 @@ BayesLocalizer::BayesLocalizer(const map::MatchIndex& index, BayesModel model)
     : index_(index), model_(std::move(model)) {
   states_ = 2 * index.EdgeCount();
   for (int g = 0; g < index.EdgeCount(); ++g) total_length_in_ += index.metric(g);
-  for (auto* v : {&n_, &i1_, &i2_, &c1_, &c2_, &nn_, &ni1_, &ni2_, &nc1_, &nc2_}) {
+  for (auto* v : {&n_, &i1_, &i2_, &c1_, &c2_, &nn_, &ni1_, &ni2_, &nc1_, &nc2_, &s1_, &s2_, &t_,
+                  &h_, &ns1_, &ns2_, &nt_, &nh_}) {
     v->assign(states_, 0.0);
   }
   for (auto* v : {&lb1_, &lb2_, &nlb1_, &nlb2_}) v->assign(states_, 0);
@@ -37,6 +38,7 @@ void BayesLocalizer::Reset() {
   std::fill(n_.begin(), n_.end(), 0.0);
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
+  ClearLeafPhases();
   outside_ = 0.0;
   status_ = RecoveryStatus::kEmpty;
   best_ = PoseBelief{};
@@ -49,6 +51,9 @@ void BayesLocalizer::Reverse(double travelled_in) {
   if (states_ == 0 || edges_ == 0) return;
   std::fill(nn_.begin(), nn_.end(), 0.0);
   const bool measured = std::isfinite(travelled_in) && travelled_in > 0.0;
+  // S1(d), S2(d), T(d): a leaf of door d was sensed as a door, so going back the robot
+  // meets that leaf again, as it meets door d from N(d).
+  for (int s = 0; s < states_; ++s) n_[s] += s1_[s] + s2_[s] + t_[s];
   for (int g = 0; g < index_.EdgeCount(); ++g) {
     for (const int dir : {+1, -1}) {
       const int s = State(g, dir);
@@ -64,11 +69,16 @@ void BayesLocalizer::Reverse(double travelled_in) {
       }
       // Inside wall g around a false door: going back it leaves g at g's start.
       nn_[State(g, -dir)] += i1_[s] + i2_[s];
+      // H(g): the wall before door g held g's first leaf, read as wall; going back the robot
+      // sees that wall again (leaf and all) and leaves it at its start.
+      const int before = index_.Step(g, -dir);
+      if (before >= 0 && h_[s] > 0.0) nn_[State(before, -dir)] += h_[s];
     }
   }
   n_.swap(nn_);
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
+  ClearLeafPhases();
   skip_partial_ = true;
   // Moving the belief is no new evidence: the confirmation count stays as it was.
   const int above = above_;
@@ -85,7 +95,6 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
   // have turned (a corner) or at the end of an open ring; a reversal there (a hallway end)
   // absorbs whatever odometry overshoots.
   const auto below = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
-  const Confusion& cf = model_.confusion;
   // An outlier's share stays where the reversal without the distance would put it: a
   // stretch the map does not explain (a door the map lacks, a wrong odometer) must not
   // empty the belief.
@@ -114,11 +123,15 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
     if (last || start > travelled_in + 4.0 * sigma) break;
     if (map::IsDoorCode(index_.code(cur))) {
       if (++missed > model_.settings.max_missed_doors) break;
-      weight *= cf.missed;
+      weight *= Missed(cur);
     }
     start += len;
     cur = after;
   }
+}
+
+double BayesLocalizer::Missed(int door) const {
+  return model_.confusion.class_missed[index_.code(door) - 1];
 }
 
 double BayesLocalizer::WallDensity(double measured, double true_len) const {
@@ -149,6 +162,7 @@ RecoveryStatus BayesLocalizer::Add(const map::SensedEdge& edge) {
   } else {
     Next(edge);
   }
+  last_ = edge;
   ++edges_;
   Normalise();
   return status_;
@@ -159,6 +173,7 @@ void BayesLocalizer::First(const map::SensedEdge& e) {
   std::fill(n_.begin(), n_.end(), 0.0);
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
+  ClearLeafPhases();
   AddPrior(e, 1.0);
 }
 
@@ -177,7 +192,7 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
     if (door) {
       if (map::IsDoorCode(code)) {
         const int k = code - 1, c = e.code - 1;
-        pn = prior * (k == c ? cf.correct : cf.missized * cf.missized_to[k][c]);
+        pn = prior * (k == c ? cf.class_correct[k] : cf.class_missized[k] * cf.missized_to[k][c]);
       } else if (code == map::kWallCode && len > ClassWidth(e.code)) {
         // The robot starts beside a false door in a wall.
         pi2 = cf.false_door * cf.false_class[e.code - 1] * ClassWidth(e.code) / total_length_in_;
@@ -233,7 +248,7 @@ double BayesLocalizer::PriorOverMissedDoors(int g, int dir, double sigma,
     if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
     const double a_d = dir > 0 ? index_.angle_end(d) : index_.angle_start(d);
     if (!Coplanar(a_d)) break;
-    p *= cf.missed;
+    p *= Missed(d);
     chain += index_.metric(d);
     // Started inside the missed door itself.
     if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
@@ -254,6 +269,7 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   std::fill(nn_.begin(), nn_.end(), 0.0);
   std::fill(ni1_.begin(), ni1_.end(), 0.0);
   std::fill(ni2_.begin(), ni2_.end(), 0.0);
+  for (auto* v : {&ns1_, &ns2_, &nt_, &nh_}) std::fill(v->begin(), v->end(), 0.0);
   // Belief that passes out through a corridor's open end: the ring says nothing of where
   // the robot goes from there (across the corridor beyond, into a hall), so that belief
   // starts again from the prior, with what was sensed after it as a first edge. Belief that
@@ -270,6 +286,7 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
     if (p1 > 0.0) NextFromFirstPart(s, p1, e);
     const double p2 = i2_[s];
     if (p2 > 0.0) NextFromSecondPart(s, p2, e);
+    if (s1_[s] > 0.0 || s2_[s] > 0.0 || t_[s] > 0.0 || h_[s] > 0.0) NextFromLeafPhases(s, e);
   }
   n_.swap(nn_);
   i1_.swap(ni1_);
@@ -278,6 +295,10 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   c2_.swap(nc2_);
   lb1_.swap(nlb1_);
   lb2_.swap(nlb2_);
+  s1_.swap(ns1_);
+  s2_.swap(ns2_);
+  t_.swap(nt_);
+  h_.swap(nh_);
   if (leaving > 0.0) {
     // Outside the ring the robot met the next wall somewhere along it: a partial wall.
     map::SensedEdge after = e;
@@ -308,19 +329,17 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
   } else if (wall && map::IsDoorCode(code1)) {
     // A missed door seen as wall surface (at a corner), maybe with the wall after it.
     const double d = index_.metric(n1);
-    nn_[s1] += pn * angle * cf.missed * WallDensity(e.metric_in, d);
+    nn_[s1] += pn * angle * Missed(n1) * WallDensity(e.metric_in, d);
     const int w = index_.Step(n1, dir);
     if (w >= 0 && index_.code(w) == map::kWallCode) {
       const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
       if (Coplanar(a_out)) {
-        nn_[State(w, dir)] += pn * angle * cf.missed * (1.0 - cf.false_door) *
+        nn_[State(w, dir)] += pn * angle * Missed(n1) * (1.0 - cf.false_door) *
                               WallDensity(e.metric_in, d + index_.metric(w));
       }
     }
   } else if (door && map::IsDoorCode(code1)) {
-    const int k = code1 - 1, c = e.code - 1;
-    const double pc = k == c ? cf.correct : cf.missized * cf.missized_to[k][c];
-    nn_[s1] += pn * angle * pc;
+    NextLeafFromEnd(n1, dir, pn, angle, e);
   } else if (!door && !wall && code1 == e.code) {
     nn_[s1] += pn * angle * WallDensity(e.metric_in, index_.metric(n1));
   }
@@ -352,6 +371,104 @@ void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
     ni1_[s1] += add;
   }
   NextWallOverMissedDoors(n1, dir, pn, angle, e);
+  NextWallBeforeLeaf(n1, dir, pn, angle, e);
+}
+
+double BayesLocalizer::LeafDeficit(int k, int c) {
+  return map::DoorClassWidthIn(static_cast<map::DoorClass>(k)) -
+         map::DoorClassWidthIn(static_cast<map::DoorClass>(c));
+}
+
+double BayesLocalizer::LeafRead(int k, int c) const {
+  if (LeafDeficit(k, c) < kLeafDeficitIn) return 0.0;
+  const Confusion& cf = model_.confusion;
+  return cf.class_missized[k] * cf.missized_to[k][c];
+}
+
+double BayesLocalizer::LeafWallWeight(int k, int c, double wall_in, double len) const {
+  double sum = 0.0;
+  for (int leaf = 0; leaf < kDoorClasses; ++leaf) {
+    if (c >= 0 && leaf != c) continue;
+    const double p = LeafRead(k, leaf);
+    if (p > 0.0) sum += p * WallDensity(wall_in, len + LeafDeficit(k, leaf));
+  }
+  return sum;
+}
+
+void BayesLocalizer::NextLeafFromEnd(int n1, int dir, double pn, double angle,
+                                     const map::SensedEdge& e) {
+  const Confusion& cf = model_.confusion;
+  const int s1 = State(n1, dir);
+  const int k = index_.code(n1) - 1, c = e.code - 1;
+  const double pc = k == c ? cf.class_correct[k] : cf.class_missized[k] * cf.missized_to[k][c];
+  // A read as one leaf: the rest of the door as a second door next (S1), in the wall after
+  // (T), or nowhere; the share of it that was in the wall before came through H instead.
+  const double leaf = LeafRead(k, c);
+  const double rest = 1.0 - cf.leaf_split - cf.leaf_before - cf.leaf_after;
+  nn_[s1] += pn * angle * (pc - leaf + leaf * rest);
+  if (leaf > 0.0) {
+    ns1_[s1] += pn * angle * leaf * cf.leaf_split;
+    nt_[s1] += pn * angle * leaf * cf.leaf_after;
+  }
+}
+
+void BayesLocalizer::NextWallBeforeLeaf(int n1, int dir, double pn, double angle,
+                                        const map::SensedEdge& e) {
+  const Confusion& cf = model_.confusion;
+  if (cf.leaf_before <= 0.0) return;
+  const int n2 = index_.Step(n1, dir);
+  if (n2 < 0 || !map::IsDoorCode(index_.code(n2))) return;
+  const double a_in = dir > 0 ? index_.angle_start(n2) : index_.angle_end(n2);
+  if (!Coplanar(a_in)) return;
+  const double w = LeafWallWeight(index_.code(n2) - 1, -1, e.metric_in, index_.metric(n1));
+  nh_[State(n2, dir)] += pn * angle * (1.0 - cf.false_door) * cf.leaf_before * w;
+}
+
+void BayesLocalizer::NextFromLeafPhases(int s, const map::SensedEdge& e) {
+  const Confusion& cf = model_.confusion;
+  const double eps = model_.settings.outlier;
+  const bool door = map::IsDoorCode(e.code);
+  const int d = s / 2;
+  const int dir = (s & 1) ? -1 : +1;
+  const int k = index_.code(d) - 1;
+  nn_[s] += (s1_[s] + s2_[s] + t_[s] + h_[s]) * eps * (door ? 1.0 : 1.0 / kOutlierSpanIn);
+  const double flat = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
+  if (door) {
+    // The other leaf, its class as the door's leaf reads go.
+    const double other = cf.missized_to[k][e.code - 1];
+    nn_[s] += flat * other * (s1_[s] * (1.0 - cf.leaf_sliver) + s2_[s]);
+    if (h_[s] > 0.0 && last_.code == map::kWallCode) {
+      // The leaf after the wall that held the first one: its class given that wall.
+      const int before = index_.Step(d, -dir);
+      const double len = before >= 0 ? index_.metric(before) : 0.0;
+      const double all = LeafWallWeight(k, -1, last_.metric_in, len);
+      if (all > 0.0) {
+        nn_[s] += h_[s] * flat * LeafWallWeight(k, e.code - 1, last_.metric_in, len) / all;
+      }
+    }
+    return;
+  }
+  if (e.code != map::kWallCode || !map::IsDoorCode(last_.code)) return;
+  const double deficit = LeafDeficit(k, last_.code - 1);
+  if (s1_[s] > 0.0 && deficit > 0.0 && e.metric_in <= deficit) {
+    ns2_[s] += s1_[s] * flat * cf.leaf_sliver / deficit;  // the sliver, anywhere up to it
+  }
+  const int w = index_.Step(d, dir);
+  if (t_[s] > 0.0 && w >= 0 && index_.code(w) == map::kWallCode) {
+    const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
+    if (Coplanar(a_out)) {
+      nn_[State(w, dir)] += t_[s] * flat * (1.0 - cf.false_door) *
+                            WallDensity(e.metric_in, index_.metric(w) + deficit);
+    }
+  }
+}
+
+void BayesLocalizer::ClearLeafPhases() {
+  for (auto* v : {&s1_, &s2_, &t_, &h_}) std::fill(v->begin(), v->end(), 0.0);
+}
+
+double BayesLocalizer::Mass(int s) const {
+  return n_[s] + i1_[s] + i2_[s] + s1_[s] + s2_[s] + t_[s] + h_[s];
 }
 
 void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double angle,
@@ -374,7 +491,7 @@ void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double 
     if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
       // ... ending in the first part of a wall that holds a false door.
       const int sw = State(w, dir);
-      const double add = pn * angle * p * cf.missed * pf / len_w;
+      const double add = pn * angle * p * Missed(d) * pf / len_w;
       if (add > ni1_[sw]) {
         nc1_[sw] = e.metric_in - before_w;
         nlb1_[sw] = 0;
@@ -382,7 +499,7 @@ void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double 
       ni1_[sw] += add;
     }
     total = before_w + len_w;
-    p *= cf.missed * (1.0 - pf);
+    p *= Missed(d) * (1.0 - pf);
     nn_[State(w, dir)] += pn * angle * p * WallDensity(e.metric_in, total);
     cur = w;
   }
@@ -437,7 +554,7 @@ double BayesLocalizer::SecondPartDensity(int s, const map::SensedEdge& e) const 
 
 void BayesLocalizer::Normalise() {
   double sum = 0.0;
-  for (int s = 0; s < states_; ++s) sum += n_[s] + i1_[s] + i2_[s];
+  for (int s = 0; s < states_; ++s) sum += Mass(s);
   sum += outside_;
   if (!(sum > 0.0) || !std::isfinite(sum)) {
     // Nothing explains the sequence any more (e.g. an open ring ended under every
@@ -445,6 +562,7 @@ void BayesLocalizer::Normalise() {
     std::fill(n_.begin(), n_.end(), 1.0 / states_);
     std::fill(i1_.begin(), i1_.end(), 0.0);
     std::fill(i2_.begin(), i2_.end(), 0.0);
+    ClearLeafPhases();
     outside_ = 0.0;
     sum = 1.0;
   }
@@ -452,16 +570,11 @@ void BayesLocalizer::Normalise() {
   outside_ *= inv;
   best_ = PoseBelief{};
   for (int s = 0; s < states_; ++s) {
-    double& a = n_[s];
-    double& b = i1_[s];
-    double& c = i2_[s];
-    a *= inv;
-    b *= inv;
-    c *= inv;
-    if (a < kPruneBelow) a = 0.0;
-    if (b < kPruneBelow) b = 0.0;
-    if (c < kPruneBelow) c = 0.0;
-    const double p = a + b + c;
+    for (double* v : {&n_[s], &i1_[s], &i2_[s], &s1_[s], &s2_[s], &t_[s], &h_[s]}) {
+      *v *= inv;
+      if (*v < kPruneBelow) *v = 0.0;
+    }
+    const double p = Mass(s);
     if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
   }
   // The pose is declared once the best place has held the threshold over confirm_edges
@@ -475,7 +588,7 @@ std::vector<PoseBelief> BayesLocalizer::Top(int k) const {
   std::vector<PoseBelief> all;
   if (edges_ == 0) return all;
   for (int s = 0; s < states_; ++s) {
-    const double p = n_[s] + i1_[s] + i2_[s];
+    const double p = Mass(s);
     if (p > 0.0) all.push_back({s / 2, (s & 1) ? -1 : +1, p});
   }
   const std::size_t n = std::min<std::size_t>(all.size(), std::max(k, 0));
@@ -489,7 +602,7 @@ std::vector<PoseBelief> BayesLocalizer::Top(int k) const {
 double BayesLocalizer::PoseProbability(int edge, int dir) const {
   if (edges_ == 0 || edge < 0 || edge >= index_.EdgeCount()) return 0.0;
   const int s = State(edge, dir);
-  return n_[s] + i1_[s] + i2_[s];
+  return Mass(s);
 }
 
 }  // namespace stickrep::recovery

@@ -19,11 +19,18 @@
 //                      mis-sized rates and the mis-sized class distribution
 //   anything           with a small outlier probability, whatever the next edge is
 // From I1 a door is the false door (its class from the false-door distribution) -> I2; from
-// I2 a wall is the rest of the wall, W2 = L - W1 - door width. Adjacency angles, when
-// sensed, must agree with the map node. Belief that reaches a corridor's open end
-// (map::IsOpenEnd) leaves the ring there and starts again from the prior (the wall sensed
-// last before it may run on out through it, as far as the next thing seen). The first sensed edge is weighed by a prior uniform
-// along the walls (a wall start is the part seen from the start point: any wall at least
+// I2 a wall is the rest of the wall, W2 = L - W1 - door width.
+// A door read at least kLeafDeficitIn narrower than it is (a double door's one leaf)
+// leaves the rest of its width somewhere (ErrorModel::leaf_*), in four more phases:
+//   S1(d)  the first leaf of door d was sensed; the other leaf comes as a second door,
+//   S2(d)  maybe after a sliver of wall (the meeting stiles) between the two;
+//   T(d)   door d was sensed as one leaf and the next sensed wall holds the other;
+//   H(d)   the sensed wall before door d held its first leaf; the door sensed next is the
+//          other leaf.
+// Adjacency angles, when sensed, must agree with the map node. Belief that reaches a
+// corridor's open end (map::IsOpenEnd) leaves the ring there and starts again from the
+// prior (the wall sensed last before it may run on out through it, as far as the next thing
+// seen). The first sensed edge is weighed by a prior uniform along the walls (a wall start is the part seen from the start point: any wall at least
 // that long). After each edge the belief is normalised; a pose is reported when the best
 // (edge, direction) holds at least `threshold` of the posterior.
 
@@ -84,6 +91,8 @@ class BayesLocalizer {
   static int State(int g, int dir) { return 2 * g + (dir > 0 ? 0 : 1); }
   double AngleFactor(int g, int dir, const map::SensedEdge& e) const;
   double WallDensity(double measured, double true_len) const;
+  // The probability that map door `door` is missed (its class's rate).
+  double Missed(int door) const;
   void First(const map::SensedEdge& e);
   // Adds `weight` times the belief a first sensed edge `e` gives (a start anywhere).
   void AddPrior(const map::SensedEdge& e, double weight);
@@ -96,11 +105,26 @@ class BayesLocalizer {
   void NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e, double* leaving);
   void NextWallFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
   void NextWallOverMissedDoors(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
+  // The leaf phases: a door sensed as one leaf of door n1 from N(g), the wall before a
+  // door n2 that held its first leaf, and the edges sensed in S1, S2, T and H.
+  void NextLeafFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
+  void NextWallBeforeLeaf(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
+  void NextFromLeafPhases(int s, const map::SensedEdge& e);
+  // The probability that a door of class k is read as class c, one leaf of it (0 when c is
+  // not kLeafDeficitIn narrower), and the rest of its width then.
+  double LeafRead(int k, int c) const;
+  static double LeafDeficit(int k, int c);
+  // For H(d): the weight of the wall sensed before d (length `wall_in`, the map's `len`)
+  // having held a leaf of class c of d's class k, summed over c when c < 0.
+  double LeafWallWeight(int k, int c, double wall_in, double len) const;
   void NextFromFirstPart(int s, double p1, const map::SensedEdge& e);
   void NextFromSecondPart(int s, double p2, const map::SensedEdge& e);
   // The density of the wall `e` as W2, the rest of the wall of state s after its false door.
   double SecondPartDensity(int s, const map::SensedEdge& e) const;
   void Normalise();
+  void ClearLeafPhases();
+  // The belief of state s over all its phases.
+  double Mass(int s) const;
   // Reverse() of the mass at (the last sensed edge before `first`, dir), travelled_in into
   // `first` and beyond: into nn_.
   void ReverseAfter(int first, int dir, double mass, double travelled_in);
@@ -114,6 +138,8 @@ class BayesLocalizer {
   std::vector<std::uint8_t> lb1_, lb2_;             // consumed length is only a lower bound
   std::vector<double> nn_, ni1_, ni2_, nc1_, nc2_;  // scratch for the next step
   std::vector<std::uint8_t> nlb1_, nlb2_;
+  std::vector<double> s1_, s2_, t_, h_, ns1_, ns2_, nt_, nh_;  // the leaf phases
+  map::SensedEdge last_;  // the edge sensed last (what T and H need of it)
   RecoveryStatus status_ = RecoveryStatus::kEmpty;
   PoseBelief best_;
   int above_ = 0;  // consecutive edges the best place held the threshold

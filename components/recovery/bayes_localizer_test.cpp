@@ -277,6 +277,123 @@ TEST_F(BayesLocalizerOpenEndTest, TheLastWallBeforeAnOpenEndMayRunOnOutThroughIt
   EXPECT_EQ(b.best().dir, +1);
 }
 
+// A corridor with a 36/36 double door (edge 1), and a single 36 in door (edge 6) where a
+// read of the double door's second leaf, with the first in the wall before it, fits exactly:
+//   0 W120 1 D36/36 2 W80 3 D40 4 W150 | 5 W156 6 D36 7 W80 8 D40 9 W200 |
+// (nodes 0 and 5, marked |, are 90 deg corners; the rest 180 deg).
+map::Map CorridorWithDoubleDoor() {
+  using map::Edge;
+  map::Ring ring;
+  ring.id = "corridor";
+  ring.closed = true;
+  ring.edges = {Edge::Wall(120), Edge::Door(DoorClass::k36_36), Edge::Wall(80),
+                Edge::Door(DoorClass::k40), Edge::Wall(150), Edge::Wall(156),
+                Edge::Door(DoorClass::k36), Edge::Wall(80), Edge::Door(DoorClass::k40),
+                Edge::Wall(200)};
+  for (std::size_t i = 0; i < ring.edges.size(); ++i) {
+    map::Node n;
+    n.angle_deg = (i == 0 || i == 5) ? 90.0 : 180.0;
+    ring.nodes.push_back(n);
+  }
+  map::MapInfo info;
+  info.name = "corridor";
+  return map::Map(info, {ring});
+}
+
+// The paper's rates, with a double door read as one leaf as often as the live pipeline does
+// (configs/error_model_live.yaml), or never (`leaf` false: no leaf reads at all).
+ErrorModel WithLeafReads(bool leaf) {
+  ErrorModel em = ErrorModel::Paper();
+  if (!leaf) return em;
+  em.by_class[DoorClass::k36_36] = {0.52, 0.47, 0.01};
+  em.missized_to[DoorClass::k36_36] = {{DoorClass::k36, 0.6}, {DoorClass::k40, 0.3},
+                                       {DoorClass::k30, 0.1}};
+  em.leaf_split = 0.6;
+  em.leaf_sliver = 0.15;
+  em.leaf_wall_before = 0.15;
+  em.leaf_wall_after = 0.05;
+  em.Validate();
+  return em;
+}
+
+class BayesLocalizerLeafTest : public ::testing::Test {
+ protected:
+  // The belief on the 40 in door after the double door (edge 3), walked forward, after
+  // the sensed edges (which end there).
+  double OnTheDoorAfter(bool leaf, const std::vector<map::SensedEdge>& sensed) {
+    BayesLocalizer b = MakeLocalizer(index_, WithLeafReads(leaf));
+    for (const map::SensedEdge& e : sensed) b.Add(e);
+    return b.PoseProbability(3, +1);
+  }
+  map::Map map_ = CorridorWithDoubleDoor();
+  map::MatchIndex index_{map_};
+};
+
+TEST_F(BayesLocalizerLeafTest, AFirstLeafReadIntoTheWallBeforeTheDoorLeavesTheSingleDoorUnsure) {
+  // Wall 0 (120 in) read with the first leaf (36 in): 156 in; the second leaf as a 36. The
+  // single door 6 fits that exactly; the double door must keep enough belief that the
+  // filter is not sure of door 6, and win once the next wall tells them apart.
+  std::vector<map::SensedEdge> sensed = {Wall(100, kNaN, true), Wall(156, 90.0),
+                                         Door(DoorClass::k36), Wall(80), Door(DoorClass::k40)};
+  BayesLocalizer with = MakeLocalizer(index_, WithLeafReads(true));
+  BayesLocalizer without = MakeLocalizer(index_, WithLeafReads(false));
+  for (const map::SensedEdge& e : sensed) {
+    with.Add(e);
+    without.Add(e);
+  }
+  EXPECT_EQ(without.status(), RecoveryStatus::kLocalized);  // sure of door 8: wrong
+  EXPECT_EQ(without.best().edge, 8);
+  EXPECT_NE(with.status(), RecoveryStatus::kLocalized);
+  EXPECT_GT(with.PoseProbability(3, +1), 0.01);
+  with.Add(Wall(150));
+  EXPECT_EQ(with.best().edge, 4);
+  EXPECT_GT(with.best().probability, 0.8);
+}
+
+TEST_F(BayesLocalizerLeafTest, BothLeavesReadAsTwoDoorsAreOneDoubleDoor) {
+  const std::vector<map::SensedEdge> sensed = {Wall(150, 90.0, true), Wall(120, 90.0),
+                                               Door(DoorClass::k36), Door(DoorClass::k36),
+                                               Wall(80), Door(DoorClass::k40)};
+  EXPECT_GT(OnTheDoorAfter(true, sensed), 0.99);
+  EXPECT_LT(OnTheDoorAfter(false, sensed), 0.5);
+}
+
+TEST_F(BayesLocalizerLeafTest, BothLeavesWithASliverOfWallBetweenThemAreOneDoubleDoor) {
+  const std::vector<map::SensedEdge> sensed = {Wall(150, 90.0, true), Wall(120, 90.0),
+                                               Door(DoorClass::k36), Wall(5),
+                                               Door(DoorClass::k36), Wall(80),
+                                               Door(DoorClass::k40)};
+  EXPECT_GT(OnTheDoorAfter(true, sensed), 0.8);
+  EXPECT_LT(OnTheDoorAfter(false, sensed), 0.5);
+}
+
+TEST_F(BayesLocalizerLeafTest, ASecondLeafReadIntoTheWallAfterTheDoorIsExplained) {
+  // One leaf as a 36, the other in wall 2: 80 + 36 = 116 in.
+  const std::vector<map::SensedEdge> sensed = {Wall(150, 90.0, true), Wall(120, 90.0),
+                                               Door(DoorClass::k36), Wall(116),
+                                               Door(DoorClass::k40)};
+  BayesLocalizer with = MakeLocalizer(index_, WithLeafReads(true));
+  BayesLocalizer without = MakeLocalizer(index_, WithLeafReads(false));
+  for (const map::SensedEdge& e : sensed) {
+    with.Add(e);
+    without.Add(e);
+  }
+  EXPECT_EQ(with.best().edge, 3);
+  EXPECT_GT(with.PoseProbability(3, +1), 10.0 * without.PoseProbability(3, +1));
+}
+
+TEST_F(BayesLocalizerLeafTest, TheLeafPhasesKeepThePosteriorNormalised) {
+  BayesLocalizer b = MakeLocalizer(index_, WithLeafReads(true));
+  for (const map::SensedEdge& e : {Wall(150, 90.0, true), Wall(156, 90.0), Door(DoorClass::k36)}) {
+    b.Add(e);
+  }
+  double sum = 0.0;
+  for (int g = 0; g < index_.EdgeCount(); ++g) {
+    sum += b.PoseProbability(g, +1) + b.PoseProbability(g, -1);
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-9);
+}
+
 TEST_F(BayesLocalizerTest, InvalidEdgesAreRejected) {
   BayesLocalizer b = Make(ErrorModel::Paper());
   map::SensedEdge e = Door(DoorClass::k36);

@@ -100,6 +100,44 @@ void ErrorModel::Validate() const {
   if (!false_door_classes.empty() && std::abs(s - 1.0) > kSumTolerance) {
     throw std::invalid_argument("false_door_classes sums to " + Num(s) + ", not 1");
   }
+  for (const auto& [c, r] : by_class) {
+    const std::string key = std::string("by_class.") + map::DoorClassName(c);
+    RequireProbability(r.correct, key + ".correct");
+    RequireProbability(r.missized, key + ".missized");
+    RequireProbability(r.missed, key + ".missed");
+    const double rs = r.correct + r.missized + r.missed;
+    if (std::abs(rs - 1.0) > kSumTolerance) {
+      throw std::invalid_argument(key + ": correct + missized + missed = " + Num(rs) +
+                                  ", must be 1 within " + Num(kSumTolerance));
+    }
+  }
+  RequireProbability(leaf_split, "leaf_split");
+  RequireProbability(leaf_sliver, "leaf_sliver");
+  RequireProbability(leaf_wall_before, "leaf_wall_before");
+  RequireProbability(leaf_wall_after, "leaf_wall_after");
+  const double leaf = leaf_split + leaf_wall_before + leaf_wall_after;
+  if (leaf > 1.0 + kSumTolerance) {
+    throw std::invalid_argument("leaf_split + leaf_wall_before + leaf_wall_after = " + Num(leaf) +
+                                ", more than 1");
+  }
+}
+
+// The optional leaf_* shares (each 0 when absent): each a probability, the three places the
+// rest of a leaf read goes to at most 1 together.
+static void ReadLeafShares(const StrictYaml& node, ErrorModel* m) {
+  const auto share = [&](const char* key) {
+    return node.Has(key) ? node.Get<double>(key, 0.0, 1.0) : 0.0;
+  };
+  m->leaf_split = share("leaf_split");
+  m->leaf_sliver = share("leaf_sliver");
+  m->leaf_wall_before = share("leaf_wall_before");
+  m->leaf_wall_after = share("leaf_wall_after");
+  const double leaf = m->leaf_split + m->leaf_wall_before + m->leaf_wall_after;
+  if (leaf > 1.0 + kSumTolerance) {
+    node.Fail(node.Has("leaf_wall_after") ? "leaf_wall_after" : "leaf_wall_before",
+              "leaf_split + leaf_wall_before + leaf_wall_after = " + Num(leaf) +
+                  ", more than 1");
+  }
 }
 
 static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
@@ -131,6 +169,27 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
   if (node.Has("false_door_classes")) {
     m.false_door_classes = ReadDistribution(node.Child("false_door_classes"));
   }
+  if (node.Has("by_class")) {
+    const StrictYaml bc = node.Child("by_class");
+    if (!bc.IsMap()) node.Fail("by_class", "expected a mapping of door class to rates");
+    for (const std::string& key : bc.Keys()) {
+      const DoorClass c = ClassKey(bc, key);
+      const StrictYaml row = bc.Child(key);
+      ErrorModel::DoorRates r;
+      r.correct = row.Get<double>("correct", 0.0, 1.0);
+      r.missized = row.Get<double>("missized", 0.0, 1.0);
+      r.missed = row.Get<double>("missed", 0.0, 1.0);
+      const double rs = r.correct + r.missized + r.missed;
+      if (std::abs(rs - 1.0) > kSumTolerance) {
+        row.Fail("missed", "correct + missized + missed = " + Num(rs) + ", must be 1 within " +
+                               Num(kSumTolerance));
+      }
+      row.Finish();
+      m.by_class[c] = r;
+    }
+    bc.Finish();
+  }
+  ReadLeafShares(node, &m);
   node.Finish();
   root.Finish();
   return m;
@@ -168,6 +227,17 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   c.missized = model.door_missized;
   c.missed = model.door_missed;
   c.false_door = model.wall_false_door;
+  for (int k = 0; k < kDoorClasses; ++k) {
+    const auto it = model.by_class.find(static_cast<DoorClass>(k));
+    const bool own = it != model.by_class.end();
+    c.class_correct[k] = own ? it->second.correct : c.correct;
+    c.class_missized[k] = own ? it->second.missized : c.missized;
+    c.class_missed[k] = own ? it->second.missed : c.missed;
+  }
+  c.leaf_split = model.leaf_split;
+  c.leaf_sliver = model.leaf_sliver;
+  c.leaf_before = model.leaf_wall_before;
+  c.leaf_after = model.leaf_wall_after;
   double doors = 0;
   for (int k = 0; k < kDoorClasses; ++k) {
     c.map_prior[k] =
@@ -387,6 +457,19 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
   }
   out += "  missized_to: " + missized + "}\n";
   out += "  false_door_classes: " + distribution(m.false_door_classes) + "\n";
+  if (!m.by_class.empty()) {
+    out += "  by_class:\n";
+    for (const auto& [c, r] : m.by_class) {
+      out += "    \"" + std::string(map::DoorClassName(c)) + "\": {correct: " + number(r.correct) +
+             ", missized: " + number(r.missized) + ", missed: " + number(r.missed) + "}\n";
+    }
+  }
+  if (m.leaf_split > 0.0 || m.leaf_wall_before > 0.0 || m.leaf_wall_after > 0.0) {
+    out += "  leaf_split: " + number(m.leaf_split) + "\n";
+    out += "  leaf_sliver: " + number(m.leaf_sliver) + "\n";
+    out += "  leaf_wall_before: " + number(m.leaf_wall_before) + "\n";
+    out += "  leaf_wall_after: " + number(m.leaf_wall_after) + "\n";
+  }
   return out;
 }
 

@@ -24,6 +24,10 @@
 namespace stickrep::recovery {
 
 inline constexpr int kDoorClasses = map::kDoorClassCount;
+// A door sensed this much narrower than its class (a double door's one leaf) has left the
+// rest of its width to a wall beside it (ErrorModel::leaf_wall_before/after); a smaller
+// mis-sizing is lost in the walls' odometry noise.
+inline constexpr double kLeafDeficitIn = 12.0;
 using ClassVector = std::array<double, kDoorClasses>;
 using ClassMatrix = std::array<ClassVector, kDoorClasses>;
 
@@ -35,11 +39,27 @@ struct ErrorModel {
   double door_missized = 0.1020;    // true positives sensed with a wrong class
   double door_missed = 0.0612;      // false negatives
   double wall_false_door = 0.1591;  // false positives, per wall edge
+  // Per true class, its own door rates where they differ from the ones above (a double door
+  // is read as one leaf far more often than a single door is mis-sized). Each sums to 1.
+  struct DoorRates {
+    double correct = 0, missized = 0, missed = 0;
+  };
+  std::map<map::DoorClass, DoorRates> by_class;
   // Per true class, where its mis-sized sightings go (sensed class -> probability). A class
   // not listed goes to its neighbouring classes equally (DefaultMissizedTargets).
   std::map<map::DoorClass, std::map<map::DoorClass, double>> missized_to;
   // The class distribution of false doors; empty: the map's door-class frequencies.
   std::map<map::DoorClass, double> false_door_classes;
+  // A mis-sized door read at least kLeafDeficitIn narrower than it is (a double door read as
+  // one leaf): where the rest of its width went, as shares of those reads. The other leaf
+  // read as a second door (`leaf_split`; of those, `leaf_sliver` with a sliver of wall, the
+  // meeting stiles, between the two), or the sensed wall before or after it longer by the
+  // missing width. Not in Table 6.10 (the paper counts frames, not assembled edges); all 0:
+  // every such read leaves its neighbours as they are.
+  double leaf_split = 0.0;
+  double leaf_sliver = 0.0;
+  double leaf_wall_before = 0.0;
+  double leaf_wall_after = 0.0;
 
   // The paper's rates (Table 6.10).
   static ErrorModel Paper() { return ErrorModel{}; }
@@ -67,9 +87,13 @@ std::vector<map::DoorClass> DefaultMissizedTargets(map::DoorClass c);
 // Bayes filter's observation model.
 struct Confusion {
   double correct = 0, missized = 0, missed = 0, false_door = 0;
+  // Per true class: ErrorModel::by_class, or the rates above.
+  ClassVector class_correct{}, class_missized{}, class_missed{};
   ClassMatrix missized_to{};  // [true][sensed], each row sums to 1
   ClassVector false_class{};  // sums to 1
   ClassVector map_prior{};    // the map's door-class frequencies (sum 1, or all 0)
+  // ErrorModel::leaf_split, leaf_sliver, leaf_wall_before, leaf_wall_after
+  double leaf_split = 0, leaf_sliver = 0, leaf_before = 0, leaf_after = 0;
 };
 Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index);
 

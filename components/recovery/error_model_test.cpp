@@ -90,6 +90,48 @@ TEST(ErrorModelFile, UnknownDoorClassIsRejectedWithItsKey) {
   }
 }
 
+TEST(ErrorModelFile, ReadsPerClassRatesAndLeafShares) {
+  const ErrorModel m = ParseErrorModel(
+      Model("  by_class:\n"
+            "    \"36/36\": {correct: 0.5, missized: 0.45, missed: 0.05}\n"
+            "  leaf_split: 0.6\n  leaf_sliver: 0.1\n  leaf_wall_before: 0.2\n"
+            "  leaf_wall_after: 0.05\n"),
+      "m.yaml");
+  EXPECT_DOUBLE_EQ(m.by_class.at(DoorClass::k36_36).missized, 0.45);
+  EXPECT_DOUBLE_EQ(m.leaf_wall_before, 0.2);
+  // Resolved: the class's own rates, the others' from the overall ones.
+  const map::Map corridor = testing::CorridorMap();
+  const Confusion c = Resolve(m, map::MatchIndex(corridor));
+  EXPECT_DOUBLE_EQ(c.class_correct[static_cast<int>(DoorClass::k36_36)], 0.5);
+  EXPECT_DOUBLE_EQ(c.class_correct[static_cast<int>(DoorClass::k36)], 0.8367);
+  // Written and read back.
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  EXPECT_DOUBLE_EQ(back.by_class.at(DoorClass::k36_36).missed, 0.05);
+  EXPECT_DOUBLE_EQ(back.leaf_split, 0.6);
+}
+
+TEST(ErrorModelFile, AClassRowThatDoesNotSumToOneIsRejectedOnItsLine) {
+  try {
+    ParseErrorModel(Model("  by_class:\n    \"32\": {correct: 0.5, missized: 0.1, missed: 0.1}\n"),
+                    "m.yaml");
+    FAIL() << "accepted a class row summing to 0.7";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 8);
+    EXPECT_NE(e.key().find("32"), std::string::npos) << e.key();
+    EXPECT_NE(e.reason().find("must be 1"), std::string::npos);
+  }
+}
+
+TEST(ErrorModelFile, LeafSharesOverOneAreRejected) {
+  try {
+    ParseErrorModel(Model("  leaf_split: 0.7\n  leaf_wall_before: 0.4\n"), "m.yaml");
+    FAIL() << "accepted leaf shares summing to 1.1";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "error_model.leaf_wall_before");
+    EXPECT_NE(e.reason().find("more than 1"), std::string::npos);
+  }
+}
+
 TEST(ErrorModelFile, UnknownKeyIsRejected) {
   EXPECT_THROW(ParseErrorModel(Model("  door_fuzzy: 0.1\n"), "m.yaml"), InputError);
 }

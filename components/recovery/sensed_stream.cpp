@@ -112,12 +112,12 @@ void SensedStream::ProcessNextTrueEdge() {
 void SensedStream::SenseDoor(Piece p, map::SymbolCode code, double len) {
   const int k = code - 1;
   const double u = Uniform();
-  if (u < confusion_.correct) {
+  if (u < confusion_.class_correct[k]) {
     p.kind = Piece::kDoor;
     p.code = code;
     p.true_width_in = len;
     p.whole_edge = true;
-  } else if (u < confusion_.correct + confusion_.missized) {
+  } else if (u < confusion_.class_correct[k] + confusion_.class_missized[k]) {
     p.kind = Piece::kDoor;
     p.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(confusion_.missized_to[k])));
     p.true_width_in = len;

@@ -19,13 +19,19 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
     for (int s = 0; s < map::kDoorClassCount; ++s) missized_to[t][s] += o.missized_to[t][s];
   }
   wall_error_in.insert(wall_error_in.end(), o.wall_error_in.begin(), o.wall_error_in.end());
-  for (const auto& [width, t] : o.by_width) {
-    DoorTally& mine = by_width[width];
+  leaf_reads += o.leaf_reads;
+  leaf_wall_before += o.leaf_wall_before;
+  leaf_wall_after += o.leaf_wall_after;
+  leaf_split += o.leaf_split;
+  leaf_sliver_in.insert(leaf_sliver_in.end(), o.leaf_sliver_in.begin(), o.leaf_sliver_in.end());
+  const auto add = [](DoorTally& mine, const DoorTally& t) {
     mine.passed += t.passed;
     mine.correct += t.correct;
     mine.missized += t.missized;
     mine.missed += t.missed;
-  }
+  };
+  for (const auto& [width, t] : o.by_width) add(by_width[width], t);
+  for (int k = 0; k < map::kDoorClassCount; ++k) add(by_class[k], o.by_class[k]);
 }
 
 recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
@@ -54,6 +60,22 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
       m.false_door_classes[static_cast<map::DoorClass>(c)] = static_cast<double>(false_class[c]) / fp;
     }
   }
+  for (int k = 0; k < map::kDoorClassCount; ++k) {
+    const DoorTally& t = by_class[k];
+    if (t.passed == 0) continue;
+    const double n = static_cast<double>(t.passed) + kClassPriorDoors;
+    recovery::ErrorModel::DoorRates r;
+    r.correct = (t.correct + kClassPriorDoors * m.door_correct) / n;
+    r.missized = (t.missized + kClassPriorDoors * m.door_missized) / n;
+    r.missed = (t.missed + kClassPriorDoors * m.door_missed) / n;
+    m.by_class[static_cast<map::DoorClass>(k)] = r;
+  }
+  if (leaf_reads > 0) {
+    m.leaf_split = static_cast<double>(leaf_split) / leaf_reads;
+    m.leaf_sliver = leaf_split > 0 ? static_cast<double>(leaf_sliver_in.size()) / leaf_split : 0.0;
+    m.leaf_wall_before = static_cast<double>(leaf_wall_before) / leaf_reads;
+    m.leaf_wall_after = static_cast<double>(leaf_wall_after) / leaf_reads;
+  }
   return m;
 }
 
@@ -64,6 +86,52 @@ struct Passage {
   int edge;
   double first_in, last_in;
 };
+
+// A door at passage p read as `sensed[i]`, narrower than it is by at least
+// recovery::kLeafDeficitIn: where the rest of its width went. `on_door` are the sensed
+// doors whose centre lay on this true door, `sensed[i]` first. Returns the index of the
+// second leaf when the door was read as both leaves (not a false door then), else 0.
+std::size_t CountLeafRead(const map::Ring& view_ring, const std::vector<map::SensedEdge>& sensed,
+                          const std::vector<std::size_t>& on_door,
+                          const std::vector<int>& passed_edges, std::size_t p,
+                          EdgeErrorCounts* c) {
+  const std::size_t i = on_door.front();
+  const map::Edge& door = view_ring.edges[passed_edges[p]];
+  const double deficit =
+      door.metric_in - map::DoorClassWidthIn(static_cast<map::DoorClass>(sensed[i].code - 1));
+  if (deficit < recovery::kLeafDeficitIn) return 0;
+  ++c->leaf_reads;
+  // Both leaves, right after each other or with a sliver of wall (the meeting stiles)
+  // between them.
+  if (on_door.size() >= 2) {
+    const std::size_t second = on_door[1];
+    if (second == i + 1) {
+      ++c->leaf_split;
+      return second;
+    }
+    if (second == i + 2 && sensed[i + 1].code == map::kWallCode &&
+        sensed[i + 1].metric_in < deficit) {
+      ++c->leaf_split;
+      c->leaf_sliver_in.push_back(sensed[i + 1].metric_in);
+      return second;
+    }
+  }
+  // One leaf: sensed minus true length of the wall on one side, when both are walls.
+  const auto excess = [&](std::size_t si, std::size_t pi) {
+    const map::Edge& wall = view_ring.edges[passed_edges[pi]];
+    if (sensed[si].code != map::kWallCode || !wall.IsWall()) return 0.0;
+    return sensed[si].metric_in - wall.metric_in;
+  };
+  const double before = i > 0 ? excess(i - 1, p - 1) : 0.0;
+  const double after =
+      i + 1 < sensed.size() && p + 1 < passed_edges.size() ? excess(i + 1, p + 1) : 0.0;
+  if (before > 0.5 * deficit && before >= after) {
+    ++c->leaf_wall_before;
+  } else if (after > 0.5 * deficit) {
+    ++c->leaf_wall_after;
+  }
+  return 0;
+}
 
 // The true edges passed, in order; an edge passed twice (a lap) is taken once per pass.
 std::vector<Passage> Passages(const std::vector<TruthSample>& truth) {
@@ -106,6 +174,8 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
   }
   // The class each passage's door was sensed with (for wall length checks).
   std::vector<std::optional<std::size_t>> matched(passed.size());
+  std::vector<int> passed_edges;
+  for (const Passage& q : passed) passed_edges.push_back(q.edge);
   for (std::size_t p = 0; p < passed.size(); ++p) {
     const double a = std::min(passed[p].first_in, passed[p].last_in);
     const double b = std::max(passed[p].first_in, passed[p].last_in);
@@ -115,25 +185,34 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
     if (edge.door_class) {
       ++c.true_doors;
       EdgeErrorCounts::DoorTally& tally = c.by_width[static_cast<int>(std::lround(edge.metric_in))];
+      EdgeErrorCounts::DoorTally& of_class = c.by_class[static_cast<int>(*edge.door_class)];
       ++tally.passed;
+      ++of_class.passed;
       if (it == doors_on.end()) {
         ++c.missed;
         ++tally.missed;
+        ++of_class.missed;
         continue;
       }
       const std::size_t first = it->second.front();
+      std::size_t leaf = 0;
       const map::SymbolCode want = map::DoorCode(*edge.door_class);
       if (sensed[first].code == want) {
         ++c.correct;
         ++tally.correct;
+        ++of_class.correct;
         matched[p] = first;
       } else {
         ++c.missized;
         ++tally.missized;
+        ++of_class.missized;
         c.missized_to[static_cast<int>(*edge.door_class)][sensed[first].code - 1]++;
+        leaf = CountLeafRead(view_ring, sensed, it->second, passed_edges, p, &c);
       }
-      // More sensed doors on the same true door are false doors as well.
+      // More sensed doors on the same true door are false doors as well (but for a double
+      // door's second leaf).
       for (std::size_t k = 1; k < it->second.size(); ++k) {
+        if (it->second[k] == leaf && leaf > 0) continue;
         ++c.false_doors;
         c.false_class[sensed[it->second[k]].code - 1]++;
       }

@@ -33,6 +33,12 @@ struct EdgeErrorCounts {
   std::array<long, map::kDoorClassCount> false_class{};
   // Sensed minus true length of walls between two doors that were both sensed correctly.
   std::vector<double> wall_error_in;
+  // Mis-sized doors read at least recovery::kLeafDeficitIn narrower than they are (a double
+  // door read as one leaf), and where the rest of the width went: the other leaf read as a
+  // second door (right after, or after a sliver of wall: the slivers' sensed lengths), or
+  // the sensed wall just before or just after longer by more than half the missing width.
+  long leaf_reads = 0, leaf_split = 0, leaf_wall_before = 0, leaf_wall_after = 0;
+  std::vector<double> leaf_sliver_in;
   // The true doors by their width (inches, rounded): passed, sensed with their class,
   // mis-sized, missed. A door wider than the camera's view at the wall's range is never
   // whole in one frame; this shows which widths the pipeline sees.
@@ -40,9 +46,14 @@ struct EdgeErrorCounts {
     long passed = 0, correct = 0, missized = 0, missed = 0;
   };
   std::map<int, DoorTally> by_width;
+  // The same by the door's class: the error model's per-class rates.
+  std::array<DoorTally, map::kDoorClassCount> by_class{};
 
   void Add(const EdgeErrorCounts& other);
-  // The rates as an error model (door rates per true door, false doors per true wall).
+  // The rates as an error model (door rates per true door, false doors per true wall). Each
+  // class's own rates are shrunk towards the overall ones by kClassPriorDoors doors' worth,
+  // so a class seen a few times, all correct, is not made certain.
+  static constexpr double kClassPriorDoors = 20.0;
   recovery::ErrorModel ToModel(const std::string& source) const;
 };
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/input_error.h"
+#include "common/quantile.h"
 #include "common/worker_pool.h"
 #include "localizer/localizer_config.h"
 #include "study_tool/study_report.h"
@@ -154,6 +155,14 @@ void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts
                        t.correct, t.missized, t.missed,
                        100.0 * t.missed / std::max<long>(1, t.passed));
   }
+  const long one_leaf = total.leaf_reads - total.leaf_split;
+  out << fmt::format("  doors read narrower by >= {:g} in (a double door's leaf): {}; the other "
+                     "leaf as a second door {} ({} after a sliver of wall, median {:.1f} in); "
+                     "one leaf {}: the rest in the wall before {}, after {}, neither {}\n",
+                     recovery::kLeafDeficitIn, total.leaf_reads, total.leaf_split,
+                     total.leaf_sliver_in.size(), Median(total.leaf_sliver_in), one_leaf,
+                     total.leaf_wall_before, total.leaf_wall_after,
+                     one_leaf - total.leaf_wall_before - total.leaf_wall_after);
   out << "(Table 6.10 counts frames; ours counts the edges the localizer is given, after the "
          "frames of a door are voted into one edge)\n";
 }
