@@ -100,5 +100,27 @@ TEST(ConvertTest, StatusEnumsOutOfRangeAreRefused) {
   EXPECT_EQ(FromIdl(ms).value->state, message::MissionState::kLinkLost);
 }
 
+TEST(ConvertTest, GroundTruthRoundTripsAndRefusesANonFinitePose) {
+  message::GroundTruth g;
+  g.header = {99, 0};
+  g.x_in = 12.5;
+  g.y_in = -3.0;
+  g.heading_rad = 1.5;
+  g.ring_id = "wing1_corridor";
+  g.edge_index = 59;
+  g.collisions = 2;
+  g.forward_in_ring = true;
+  msgs::GroundTruth m = ToIdl(g);
+  const auto back = FromIdl(m);
+  ASSERT_TRUE(back.value) << back.reason;
+  EXPECT_EQ(back.value->ring_id, "wing1_corridor");
+  EXPECT_EQ(back.value->edge_index, 59);
+  EXPECT_EQ(back.value->collisions, 2);
+  EXPECT_TRUE(back.value->forward_in_ring);
+  EXPECT_DOUBLE_EQ(back.value->y_in, -3.0);
+  m.pose().heading_rad(std::numeric_limits<double>::infinity());
+  EXPECT_EQ(FromIdl(m).reason, "a non-finite true pose");
+}
+
 }  // namespace
 }  // namespace stickrep::convert

@@ -184,4 +184,19 @@ struct ComponentStatus {
   std::string host;
 };
 
+// sim/ground_truth: where the virtual robot really is (building frame; the place a pose is
+// judged on).
+struct GroundTruth {
+  Header header;
+  double x_in = 0.0, y_in = 0.0, heading_rad = 0.0;
+  std::string ring_id;
+  int edge_index = 0;
+  double offset_in = 0.0;
+  double distance_in = 0.0;
+  double lateral_offset_in = 0.0;
+  double heading_error_deg = 0.0;
+  int collisions = 0;
+  bool forward_in_ring = false;
+};
+
 }  // namespace stickrep::message

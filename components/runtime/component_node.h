@@ -46,12 +46,14 @@ class ComponentNode : public ProcessNode {
  public:
   void Configure(NodeContext& ctx) final {
     ctx_ = &ctx;
-    clock_ = std::make_unique<FunctionClock>(ctx.now_ns);
+    clock_ = std::make_unique<ScaledClock>(ctx.now_ns);
     component_ctx_ = std::make_unique<component::Context>(
         component::Context{ctx.name, *clock_, ctx.log, ctx.counters, ctx.request_stop});
     component_ = Build(ctx, *component_ctx_);
+    // Timer periods are in the component's time: faster than real time, they fire as many
+    // times as often on the wall clock.
     for (component::Timer& t : component_->Timers()) {
-      ctx.executor.AddTimer(t.period_s, std::move(t.fire));
+      ctx.executor.AddTimer(t.period_s / clock_->scale(), std::move(t.fire));
     }
   }
   void Activate() override { component_->Activate(); }
@@ -94,18 +96,35 @@ class ComponentNode : public ProcessNode {
 
   NodeContext& ctx() { return *ctx_; }
 
+  // The component's clock runs `factor` times as fast as the wall clock from now on (a
+  // simulation faster than real time); its timers fire as many times as often. Call from
+  // Build(), before the component reads the clock.
+  void SetRealTimeFactor(double factor) { clock_->Rescale(factor); }
+
  private:
-  class FunctionClock : public component::Clock {
+  // The wall clock, or time that runs `scale` times as fast from the moment it was rescaled.
+  class ScaledClock : public component::Clock {
    public:
-    explicit FunctionClock(std::function<int64_t()> now) : now_(std::move(now)) {}
-    int64_t NowNs() const override { return now_(); }
+    explicit ScaledClock(std::function<int64_t()> now) : now_(std::move(now)) {}
+    int64_t NowNs() const override {
+      const int64_t wall = now_();
+      if (scale_ == 1.0) return wall;
+      return origin_ns_ + static_cast<int64_t>(static_cast<double>(wall - origin_ns_) * scale_);
+    }
+    void Rescale(double factor) {
+      origin_ns_ = now_();
+      scale_ = factor;
+    }
+    double scale() const { return scale_; }
 
    private:
     std::function<int64_t()> now_;
+    int64_t origin_ns_ = 0;
+    double scale_ = 1.0;
   };
 
   NodeContext* ctx_ = nullptr;
-  std::unique_ptr<FunctionClock> clock_;
+  std::unique_ptr<ScaledClock> clock_;
   std::unique_ptr<component::Context> component_ctx_;
   // Destroyed in reverse: readers first (no more callbacks), then the component, then the
   // publishers it wrote to.

@@ -19,28 +19,27 @@ component::Context& InProcessStack::ContextFor(const std::string& name) {
 
 InProcessStack::InProcessStack(const RunSetup& setup, std::unique_ptr<virtual_robot::WorldSim> sim,
                                std::shared_ptr<spdlog::logger> log, bool pose_to_executive)
-    : sim_(std::move(sim)), log_(std::move(log)) {
+    : log_(std::move(log)) {
   component::SimExecutor& e = executor_;
-  // The world first: at each instant the devices are read before the processes' timers run,
-  // and the world steps last.
-  AddWorld(setup.virtual_robot);
+  // The virtual robot first: at each instant the world steps, then the devices are read,
+  // before the processes' timers run.
+  virtual_robot_ = std::make_unique<virtual_robot::VirtualRobotComponent>(
+      ContextFor("virtual_robot"), setup.virtual_robot, std::move(sim),
+      virtual_robot::VirtualRobotComponent::Outputs{
+          e.Advertise<message::SonarEcho>("device/sonar/echo"),
+          e.Advertise<message::Image>("device/camera/frame"),
+          e.Advertise<message::EncoderReading>("device/base/encoders"),
+          e.Advertise<message::GroundTruth>("sim/ground_truth")});
   MakeComponents(setup);
   Wire(pose_to_executive);
   for (component::Component* c : Components()) e.AddTimers(*c);
   // Every component the executive may require beats, as each process's status reporter does.
   std::vector<std::string> beating;
   for (const auto& p : parts_) {
-    if (p->context.name != "executive") beating.push_back(p->context.name);
+    const std::string& name = p->context.name;
+    if (name != "executive" && name != "virtual_robot") beating.push_back(name);
   }
   AddHeartbeats(beating);
-  // The world steps after everything else due at the same instant.
-  const double step_s = 1.0 / setup.virtual_robot.sim_rate_hz;
-  const double wheel_timeout_s = setup.virtual_robot.wheel_command_timeout_s;
-  e.AddTimer(step_s, [this, step_s, wheel_timeout_s] {
-    // The base's watchdog: no set-point for a while means stop.
-    if (executor_.NowNs() - last_wheels_ns_ > wheel_timeout_s * 1e9) left_ftps_ = right_ftps_ = 0.0;
-    sim_->Step(step_s, left_ftps_, right_ftps_);
-  });
   for (component::Component* c : Components()) c->Activate();
   e.Deliver();
 }
@@ -48,8 +47,8 @@ InProcessStack::InProcessStack(const RunSetup& setup, std::unique_ptr<virtual_ro
 InProcessStack::~InProcessStack() = default;
 
 std::vector<component::Component*> InProcessStack::Components() {
-  return {sonar_.get(),     camera_.get(),    locomotion_.get(),
-          landmark_.get(),  localizer_.get(), executive_.get()};
+  return {virtual_robot_.get(), sonar_.get(),     camera_.get(),   locomotion_.get(),
+          landmark_.get(),      localizer_.get(), executive_.get()};
 }
 
 // Each component with its publishers, as its node makes it.
@@ -87,6 +86,12 @@ void InProcessStack::MakeComponents(const RunSetup& setup) {
 // The topics each process reads, as its node feeds them.
 void InProcessStack::Wire(bool pose_to_executive) {
   component::SimExecutor& e = executor_;
+  e.Subscribe<message::WheelCommand>(
+      "device/base/wheel_command",
+      [this](const message::WheelCommand& w) { virtual_robot_->OnWheels(w); });
+  e.Subscribe<message::LocalizationPose>(
+      "localization/pose",
+      [this](const message::LocalizationPose& p) { virtual_robot_->OnPose(p); });
   e.Subscribe<message::SonarEcho>("device/sonar/echo",
                                   [this](const message::SonarEcho& s) { sonar_->OnEcho(s); });
   e.Subscribe<message::Image>("device/camera/frame",
@@ -122,43 +127,6 @@ void InProcessStack::Wire(bool pose_to_executive) {
       "robot/motion/state", [this](const message::MotionState& m) { executive_->OnMotionState(m); });
   e.Subscribe<message::MissionGoal>(
       "mission/goal", [this](const message::MissionGoal& g) { executive_->OnGoal(g); });
-}
-
-void InProcessStack::AddWorld(const virtual_robot::VirtualRobotConfig& vr) {
-  component::SimExecutor& e = executor_;
-  auto& echoes = e.Advertise<message::SonarEcho>("device/sonar/echo");
-  auto& frames = e.Advertise<message::Image>("device/camera/frame");
-  auto& encoders = e.Advertise<message::EncoderReading>("device/base/encoders");
-  e.Subscribe<message::WheelCommand>("device/base/wheel_command",
-                                     [this](const message::WheelCommand& w) {
-                                       left_ftps_ = w.left_speed_ftps;
-                                       right_ftps_ = w.right_speed_ftps;
-                                       last_wheels_ns_ = executor_.NowNs();
-                                     });
-  e.AddTimer(1.0 / vr.sonar_rate_hz, [this, &echoes] {
-    message::SonarEcho s;
-    s.header.stamp_ns = executor_.NowNs();
-    s.range_in = sim_->Sonar();
-    echoes.Publish(s);
-  });
-  e.AddTimer(1.0 / vr.camera_rate_hz, [this, &frames] {
-    message::Image img;
-    img.header.stamp_ns = executor_.NowNs();
-    img.width_px = static_cast<uint32_t>(sim_->image_width_px());
-    img.height_px = static_cast<uint32_t>(sim_->image_height_px());
-    img.step_bytes = img.width_px;
-    img.encoding = "mono8";
-    img.data = sim_->RenderFrame();
-    ++frames_;
-    frames.Publish(img);
-  });
-  e.AddTimer(1.0 / vr.encoder_rate_hz, [this, &encoders] {
-    message::EncoderReading r;
-    r.header.stamp_ns = executor_.NowNs();
-    r.left_travel_in = sim_->left_travel_in();
-    r.right_travel_in = sim_->right_travel_in();
-    encoders.Publish(r);
-  });
 }
 
 void InProcessStack::AddHeartbeats(const std::vector<std::string>& names) {

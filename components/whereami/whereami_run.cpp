@@ -21,11 +21,6 @@ namespace stickrep::whereami {
 
 namespace {
 
-// The envelope is judged on straight runs (beyond 8 ft of a corner) once the robot has had
-// 20 ft to align from its start, as the virtual robot process judges it.
-constexpr double kEnvelopeCornerDistanceIn = 96.0;
-constexpr double kEnvelopeSettleDistanceIn = 240.0;
-
 StrictYaml Section(const std::string& file, const std::string& key) {
   return StrictYaml::LoadFile(file).Child(key);
 }
@@ -83,8 +78,9 @@ Ending RunResult::ending() const {
 
 namespace {
 
-// A run in progress: the stack, and what the run watches of it (the pose judged against the
-// truth, the kidnap, the traces and the measured edges).
+// A run in progress: the stack, and what the run watches of it (the poses the virtual robot
+// judged, the goal that keeps the robot travelling for a kidnap, the traces and the measured
+// edges).
 class Run {
  public:
   Run(const RunSetup& setup, const RunOptions& options, virtual_robot::PlacedRobot placed,
@@ -93,7 +89,8 @@ class Run {
 
  private:
   void OnPose(const message::LocalizationPose& p);
-  Recovery Judge(const message::LocalizationPose& p) const;
+  void OnRecovery(const Recovery& r);
+  void SendGoalAhead(const Recovery& r);
   void AfterStep();
   void TraceBelief(const message::LocalizationPose& p);
   double NowS() const { return stack_.executor().ElapsedS(); }
@@ -103,6 +100,7 @@ class Run {
   const int ring_;
   const bool measuring_;
   InProcessStack stack_;
+  const virtual_robot::VirtualRobotComponent& robot_;
   virtual_robot::WorldSim& sim_;
   const map::HallwayView& view_;
   // Measuring: the same assembly as the localizer's, never restarted but by reversals.
@@ -110,9 +108,7 @@ class Run {
   EdgeErrorMeter meter_;
   component::Publisher<message::MissionGoal>& goals_;
   RunResult result_;
-  double epoch_in_ = 0.0, epoch_s_ = 0.0;  // where the current recovery began
-  double kidnap_at_s_ = -1.0;
-  bool was_localized_ = false;
+  std::size_t judged_ = 0;  // the virtual robot's pose checks seen
   int last_view_edge_ = -1;
   std::string last_belief_;
   message::LocomotionState last_state_ = message::LocomotionState::kStopped;
@@ -125,6 +121,7 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
       ring_(ring),
       measuring_(options.measure_ft > 0.0),
       stack_(setup, std::move(placed.sim), QuietLogger(), !measuring_),
+      robot_(stack_.virtual_robot()),
       sim_(stack_.sim()),
       view_(stack_.localizer().view()),
       assembler_(localizer::MakeLocalizerConfig(setup.localizer, view_.view()).assembler),
@@ -132,11 +129,7 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
       meter_(view_.view().ring(ring), assembler_, 240.0),
       goals_(stack_.executor().Advertise<message::MissionGoal>("mission/goal")) {
   result_.start_redraws = placed.redraws;
-  const virtual_robot::SimTruth t = sim_.Truth();
-  result_.start = fmt::format("ring '{}' edge {} + {:.1f} in, {:+.1f} in off the axis, heading "
-                              "{:+.1f} deg",
-                              sim_.ring_id(), t.edge_index, t.offset_in, t.lateral_offset_in,
-                              RadToDeg(t.heading_error_rad));
+  result_.start = robot_.start();
   component::SimExecutor& e = stack_.executor();
   e.Subscribe<message::LocalizationPose>(
       "localization/pose", [this](const message::LocalizationPose& p) { OnPose(p); });
@@ -174,95 +167,60 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
   e.AddTimer(1.0 / setup.virtual_robot.sim_rate_hz, [this] { AfterStep(); });
 }
 
-// A pose is judged when the localizer first declares it (and again after a kidnap), as the
-// virtual robot process judges it.
+// A pose is judged by the virtual robot when the localizer first declares it (and again
+// after a kidnap); the run takes its verdict.
 void Run::OnPose(const message::LocalizationPose& p) {
   if (measuring_) return;  // the robot travels its distance whatever the pose
   if (options_.trace) TraceBelief(p);
-  if (p.status == message::LocalizationStatus::kLocalized && p.candidate_count > 0) {
-    if (!was_localized_) {
-      const Recovery r = Judge(p);
-      if (!result_.first) {
-        result_.first = r;
-        if (options_.kidnap_after_s < 0.0) {
-          result_.ended = "localized";
-        } else {
-          // Keep travelling: a goal half the ring ahead.
-          const int n = map_.ring(ring_).EdgeCount();
-          const int ahead = r.forward ? r.edge + n / 2 : r.edge - n / 2 + n;
-          message::MissionGoal goal;
-          goal.header.stamp_ns = stack_.executor().NowNs();
-          goal.goal_id = "far";
-          goal.target = fmt::format("{}/{}", r.ring_id, ahead % n);
-          goals_.Publish(goal);
-          kidnap_at_s_ = NowS() + options_.kidnap_after_s;
-        }
-      } else if (result_.kidnapped) {
-        result_.second = r;
-        result_.ended = "localized again after the kidnap";
-      }
-    }
-    was_localized_ = true;
-  } else if (p.status == message::LocalizationStatus::kLost) {
-    if (result_.kidnapped && !result_.lost_detected) {
-      result_.lost_detected = true;
-      result_.lost_after_ft = InchesToFeet(sim_.Truth().distance_in - epoch_in_);
-    }
-    was_localized_ = false;
-  } else {
-    was_localized_ = false;
+  const std::vector<virtual_robot::PoseCheck>& checks = robot_.checks();
+  if (checks.size() > judged_) {
+    judged_ = checks.size();
+    OnRecovery(checks.back());
+  }
+  if (p.status == message::LocalizationStatus::kLost && robot_.kidnapped() &&
+      !result_.lost_detected) {
+    result_.lost_detected = true;
+    result_.lost_after_ft = robot_.TravelledSinceEpochFt();
   }
 }
 
-Recovery Run::Judge(const message::LocalizationPose& p) const {
-  const virtual_robot::SimTruth truth = sim_.Truth();
-  Recovery r;
-  r.ring_id = p.best.ring_id;
-  r.edge = p.best.edge_index;
-  r.forward = p.best.forward;
-  r.truth_ring_id = truth.seen_ring_id;
-  r.truth_edge = truth.seen_edge_index;
-  r.truth_forward = truth.seen_forward_in_ring;
-  r.correct = virtual_robot::PoseMatchesTruth(r.ring_id, r.edge, r.forward, truth);
-  r.edges_sensed = p.edges_sensed;
-  r.distance_ft = InchesToFeet(truth.distance_in - epoch_in_);
-  r.time_s = NowS() - epoch_s_;
-  return r;
+void Run::OnRecovery(const Recovery& r) {
+  if (!result_.first) {
+    result_.first = r;
+    if (options_.kidnap_after_s < 0.0) {
+      result_.ended = "localized";
+    } else {
+      SendGoalAhead(r);
+    }
+  } else if (robot_.kidnapped() && !result_.second) {
+    result_.second = r;
+    result_.ended = "localized again after the kidnap";
+  }
 }
 
-// After each step of the world: the kidnap, the true trace, the path and the envelope.
+// Keeps the robot travelling until the kidnap: a goal half the ring ahead.
+void Run::SendGoalAhead(const Recovery& r) {
+  const int n = map_.ring(ring_).EdgeCount();
+  const int ahead = r.forward ? r.edge + n / 2 : r.edge - n / 2 + n;
+  message::MissionGoal goal;
+  goal.header.stamp_ns = stack_.executor().NowNs();
+  goal.goal_id = "far";
+  goal.target = fmt::format("{}/{}", r.ring_id, ahead % n);
+  goals_.Publish(goal);
+}
+
+// After each step of the world: the true trace (the view edge the camera looks at).
 void Run::AfterStep() {
-  if (kidnap_at_s_ >= 0.0 && NowS() >= kidnap_at_s_ && !result_.kidnapped) {
-    result_.kidnapped = true;
-    sim_.Teleport(sim_.RingPosition() + options_.kidnap_jump_in);
-    epoch_in_ = sim_.Truth().distance_in;
-    epoch_s_ = NowS();
-  }
+  if (!options_.trace) return;
   const virtual_robot::SimTruth truth = sim_.Truth();
-  if (options_.trace) {
-    const int e = view_.ViewEdge(ring_, truth.edge_index);
-    if (e != last_view_edge_) {
-      last_view_edge_ = e;
-      const map::Edge& edge = view_.view().ring(ring_).edges[e];
-      map::SensedEdge as_sensed;
-      as_sensed.code = map::CodeOf(edge);
-      as_sensed.metric_in = edge.metric_in;
-      result_.true_trace += fmt::format("{}[{}] ", map::Describe(as_sensed), e);
-    }
-  }
-  if (options_.record_path) {
-    const std::pair<double, double> at{truth.X_WR.x_in, truth.X_WR.y_in};
-    if (result_.path.empty() || std::hypot(at.first - result_.path.back().first,
-                                           at.second - result_.path.back().second) > 3.0) {
-      result_.path.push_back(at);
-    }
-  }
-  if (truth.corner_distance_in > kEnvelopeCornerDistanceIn &&
-      truth.distance_in > kEnvelopeSettleDistanceIn) {
-    result_.max_offset_in = std::max(result_.max_offset_in, std::abs(truth.lateral_offset_in));
-    result_.max_heading_deg =
-        std::max(result_.max_heading_deg, std::abs(RadToDeg(truth.heading_error_rad)));
-  }
+  const int e = view_.ViewEdge(ring_, truth.edge_index);
+  if (e == last_view_edge_) return;
+  last_view_edge_ = e;
+  const map::Edge& edge = view_.view().ring(ring_).edges[e];
+  map::SensedEdge as_sensed;
+  as_sensed.code = map::CodeOf(edge);
+  as_sensed.metric_in = edge.metric_in;
+  result_.true_trace += fmt::format("{}[{}] ", map::Describe(as_sensed), e);
 }
 
 // One trace line per change of the localizer's estimate: the newest sensed edge, the best
@@ -293,8 +251,12 @@ RunResult Run::Finish() {
     result_.ended = fmt::format("no pose after {:.0f} s simulated", options_.max_sim_s);
   }
   result_.sim_s = NowS();
-  result_.frames = stack_.frames_rendered();
+  result_.frames = robot_.frames();
   result_.collisions = sim_.Truth().collisions;
+  result_.kidnapped = robot_.kidnapped();
+  result_.max_offset_in = robot_.max_offset_in();
+  result_.max_heading_deg = robot_.max_heading_deg();
+  if (options_.record_path) result_.path = robot_.path();
   const std::vector<map::SensedEdge>& sensed =
       measuring_ ? assembler_.sequence() : stack_.localizer().localizer().sensed_sequence();
   result_.sensed_trace = map::Describe(sensed);
@@ -310,6 +272,9 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   RunSetup run_setup = setup;
   virtual_robot::VirtualRobotConfig& vr = run_setup.virtual_robot;
   vr.seed = options.seed;
+  vr.kidnap_after_localized_s = options.kidnap_after_s;
+  vr.kidnap_jump_in = options.kidnap_jump_in;
+  vr.summary_png.clear();
   if (!options.ring_id.empty()) vr.world.ring_id = options.ring_id;
   const int ring = vr.world.ring_id.empty() ? 0 : map.FindRing(vr.world.ring_id);
   if (ring < 0) throw std::invalid_argument("no ring '" + vr.world.ring_id + "' in the map");

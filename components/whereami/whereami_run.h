@@ -20,6 +20,7 @@
 #include "locomotion/locomotion_config.h"
 #include "sensing/robot_config.h"
 #include "stickrep/map.h"
+#include "virtual_robot/virtual_robot_component.h"
 #include "virtual_robot/virtual_robot_config.h"
 #include "whereami/edge_errors.h"
 
@@ -65,18 +66,7 @@ struct RunOptions {
 };
 
 // One localized pose and how it compares with the truth.
-struct Recovery {
-  std::string ring_id;
-  int edge = 0;
-  bool forward = false;
-  std::string truth_ring_id;
-  int truth_edge = 0;
-  bool truth_forward = false;
-  bool correct = false;
-  int edges_sensed = 0;      // in the localizer's current sequence
-  double distance_ft = 0.0;  // travelled since the start (or the kidnap)
-  double time_s = 0.0;       // simulated, since the start (or the kidnap)
-};
+using Recovery = virtual_robot::PoseCheck;
 
 // How a run ended. A run that touched a wall counts as a collision whatever else happened;
 // a run that could not be run (e.g. no possible start) as failed.

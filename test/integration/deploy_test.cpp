@@ -97,7 +97,7 @@ class TwoHostDeployment : public ::testing::Test {
 
   // Reads what both graphs printed; keeps the virtual robot's truth events.
   void Pump() {
-    static const std::regex truth(R"(truth: base (moving|at rest) at wall clock ([0-9.]+) s)");
+    static const std::regex truth(R"(truth: base (moving|at rest) at simulated time ([0-9.]+) s)");
     for (auto* p : {robot_.get(), base_.get()}) {
       for (const std::string& line : p->ReadLines()) {
         std::smatch m;

@@ -25,7 +25,7 @@ import time
 PROCESSES = ["stickrep-sonar", "stickrep-camera", "stickrep-locomotion", "stickrep-landmark",
              "stickrep-localizer", "stickrep-executive"]
 POSE_RE = re.compile(
-    r"pose recovered after (\d+) edges, ([\d.]+) ft, ([\d.]+) s simulated .*?: ring '([^']*)' "
+    r"pose recovered after (\d+) edges, ([\d.]+) ft, ([\d.]+) s simulated.*?: ring '([^']*)' "
     r"edge (\d+) (forward|backward); truth ring '([^']*)' edge (\d+) (forward|backward): "
     r"(CORRECT|INCORRECT)")
 SENSED_RE = re.compile(r"sensed: (.*)$")
