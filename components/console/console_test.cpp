@@ -68,18 +68,6 @@ TEST(ConsoleTest, UserDataFieldReadsKeyValuePairs) {
   EXPECT_EQ(runtime::UserDataField("stickrep;profile=camera", "history"), "");
 }
 
-TEST(ConsoleTest, ImageJsonCarriesShapeNotPixels) {
-  msgs::Image img;
-  img.width_px(4);
-  img.height_px(2);
-  img.step_bytes(4);
-  img.encoding("mono8");
-  img.data(std::vector<uint8_t>(8, 7));
-  const auto j = ToJson(img);
-  EXPECT_EQ(j["data_bytes"], 8);
-  EXPECT_FALSE(j.contains("data"));
-}
-
 }  // namespace
 }  // namespace stickrep::console
 

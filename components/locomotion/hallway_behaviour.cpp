@@ -84,13 +84,7 @@ bool HallwayTracker::UpdateOffset(double offset_in, bool recess) {
   }
   rejected_ = 0;
   EndRecessRun();
-  const double ky = pyy_ / s, kp = pyp_ / s;
-  y_ += ky * v;
-  psi_ = WrapPi(psi_ + kp * v);
-  const double a = pyy_, b = pyp_;
-  pyy_ = a - a * a / s;
-  pyp_ = b - a * b / s;
-  ppp_ = ppp_ - b * b / s;
+  Correct(1.0, 0.0, v, s);
   return true;
 }
 
@@ -100,13 +94,19 @@ void HallwayTracker::UpdateHeading(double heading_rad) {
   const double s = ppp_ + sigma * sigma;
   const double v = WrapPi(heading_rad - psi_);
   if (v * v > noise_.gate_sigmas * noise_.gate_sigmas * s) return;
-  const double ky = pyp_ / s, kp = ppp_ / s;
-  y_ += ky * v;
-  psi_ = WrapPi(psi_ + kp * v);
-  const double b = pyp_, c = ppp_;
-  pyy_ = pyy_ - b * b / s;
-  pyp_ = b - b * c / s;
-  ppp_ = c - c * c / s;
+  Correct(0.0, 1.0, v, s);
+}
+
+// The Kalman correction for a measurement h_y y + h_psi psi with innovation v and innovation
+// variance s: x += P H' v / s, P -= P H' H P / s.
+void HallwayTracker::Correct(double h_y, double h_psi, double v, double s) {
+  const double py = pyy_ * h_y + pyp_ * h_psi;  // P H'
+  const double pp = pyp_ * h_y + ppp_ * h_psi;
+  y_ += py / s * v;
+  psi_ = WrapPi(psi_ + pp / s * v);
+  pyy_ -= py * py / s;
+  pyp_ -= py * pp / s;
+  ppp_ -= pp * pp / s;
 }
 
 void HallwayTracker::TurnedOnto(double rad) {

@@ -124,6 +124,7 @@ class HallwayTracker {
   }
   // Whether the run's latest outliers drift (see HallwayTrackerNoise::recess_window_in).
   bool RecessDrifts() const;
+  void Correct(double h_y, double h_psi, double v, double s);
 };
 
 enum class BehaviourState { kNoScan, kFollowing, kStopping, kTurning, kObstacle };

@@ -23,6 +23,15 @@ constexpr double kPathSpacingIn = 3.0;
 
 }  // namespace
 
+std::string Describe(const PoseCheck& c) {
+  return fmt::format(
+      "pose recovered after {} edges, {:.1f} ft, {:.1f} s simulated: ring '{}' edge {} {}; truth "
+      "ring '{}' edge {} {}: {}",
+      c.edges_sensed, c.distance_ft, c.time_s, c.ring_id, c.edge,
+      c.forward ? "forward" : "backward", c.truth_ring_id, c.truth_edge,
+      c.truth_forward ? "forward" : "backward", c.correct ? "CORRECT" : "INCORRECT");
+}
+
 VirtualRobotComponent::VirtualRobotComponent(component::Context& ctx,
                                              const VirtualRobotConfig& config,
                                              std::unique_ptr<WorldSim> sim, Outputs out)
@@ -165,11 +174,7 @@ void VirtualRobotComponent::OnPose(const message::LocalizationPose& p) {
   judged_ = true;
   const PoseCheck c = Judge(p);
   checks_.push_back(c);
-  ctx_.log->info("pose recovered after {} edges, {:.1f} ft, {:.1f} s simulated: ring '{}' edge "
-                 "{} {}; truth ring '{}' edge {} {}: {}",
-                 c.edges_sensed, c.distance_ft, c.time_s, c.ring_id, c.edge,
-                 c.forward ? "forward" : "backward", c.truth_ring_id, c.truth_edge,
-                 c.truth_forward ? "forward" : "backward", c.correct ? "CORRECT" : "INCORRECT");
+  ctx_.log->info("{}", Describe(c));
   const SimTruth t = sim_->Truth();
   markers_.push_back({t.X_WR.x_in, t.X_WR.y_in, fmt::format("recovered {}", checks_.size())});
   if (config_.kidnap_after_localized_s >= 0.0 && !kidnapped_ && kidnap_at_s_ < 0.0) {
@@ -211,14 +216,7 @@ void VirtualRobotComponent::MaybeKidnap() {
 std::string VirtualRobotComponent::Summary() const {
   const SimTruth t = sim_->Truth();
   std::string checks;
-  for (const PoseCheck& c : checks_) {
-    checks += fmt::format(
-        "; pose recovered after {} edges, {:.1f} ft, {:.1f} s simulated: ring '{}' edge {} {}; "
-        "truth ring '{}' edge {} {}: {}",
-        c.edges_sensed, c.distance_ft, c.time_s, c.ring_id, c.edge,
-        c.forward ? "forward" : "backward", c.truth_ring_id, c.truth_edge,
-        c.truth_forward ? "forward" : "backward", c.correct ? "CORRECT" : "INCORRECT");
-  }
+  for (const PoseCheck& c : checks_) checks += "; " + Describe(c);
   // Keeping up: the frames due in the simulated time run, and the longest simulation step
   // (the step grows when the timer fires late).
   const double sim_s = ElapsedS();

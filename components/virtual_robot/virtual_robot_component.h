@@ -27,6 +27,10 @@ struct PoseCheck {
   double time_s = 0.0;       // simulated, likewise
 };
 
+// "pose recovered after 5 edges, 22.5 ft, 15.4 s simulated: ring 'r' edge 59 backward; truth
+// ring 'r' edge 59 backward: CORRECT".
+std::string Describe(const PoseCheck& c);
+
 // The virtual robot's logic: the hardware and the world. It moves the simulated base by the
 // wheel commands it is given (stopping it when they stop coming), serves encoder readings,
 // sonar echoes and camera frames at their configured rates, and, as the one that knows the
