@@ -122,6 +122,12 @@ struct Ring {
 
   int EdgeCount() const { return static_cast<int>(edges.size()); }
   int NodeCount() const { return static_cast<int>(nodes.size()); }
+  // The sum of the edges' metrics: the ring's length along its walls.
+  double LengthIn() const {
+    double sum = 0.0;
+    for (const Edge& e : edges) sum += e.metric_in;
+    return sum;
+  }
 };
 
 // Ring `ring` is joined at its artificial node `node` to node `to_node` of ring `to_ring`.

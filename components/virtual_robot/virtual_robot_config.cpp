@@ -65,10 +65,8 @@ StartPlacement DrawStart(const VirtualRobotConfig& config, const map::Ring& ring
   StartPlacement s;
   s.ring_position_in = config.start_offset_in;
   if (s.ring_position_in < 0.0) {
-    double length_in = 0.0;
-    for (const map::Edge& e : ring.edges) length_in += e.metric_in;
     std::mt19937_64 pick(seed);
-    s.ring_position_in = std::uniform_real_distribution<double>(0.0, length_in)(pick);
+    s.ring_position_in = std::uniform_real_distribution<double>(0.0, ring.LengthIn())(pick);
   }
   std::mt19937_64 pose_pick(seed ^ 0x5DEECE66Dull);
   const double max_offset = config.start_lateral_offset_max_in;
