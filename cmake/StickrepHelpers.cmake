@@ -25,8 +25,14 @@ function(stickrep_add_gtest name)
   if(ARG_SERIAL)
     set(serial TRUE)
   endif()
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
-    PROPERTIES LABELS "${ARG_LABELS}" RUN_SERIAL ${serial})
+  # Under sanitizers the tests are named asan.* or tsan.* and labelled so: the main build's
+  # ctest may run them beside its own (STICKREP_EXTRA_TEST_DIRS).
+  set(labels "${ARG_LABELS}")
+  if(STICKREP_SANITIZE AND NOT labels)
+    set(labels ${STICKREP_SANITIZE_LABEL})
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 TEST_PREFIX "${STICKREP_TEST_PREFIX}"
+    PROPERTIES LABELS "${labels}" RUN_SERIAL ${serial})
 endfunction()
 
 # stickrep_add_benchmark(NAME SOURCES ... [DEPS ...])
