@@ -1,7 +1,8 @@
-# Sanitizers for every target of the build.
+# Sanitizers and libFuzzer instrumentation for every target of the build.
 #
 #   -DSTICKREP_SANITIZE=address,undefined   AddressSanitizer (with LeakSanitizer) and UBSan
 #   -DSTICKREP_SANITIZE=thread              ThreadSanitizer (cannot be combined with address)
+#   -DSTICKREP_FUZZ=ON                      clang only: the libFuzzer targets of test/fuzz
 #
 # A sanitizer report ends the program with a non-zero exit (no recovery), so a test that
 # triggers one fails. Fast DDS, OpenCV and the other Debian libraries are not instrumented:
@@ -35,4 +36,17 @@ if(STICKREP_SANITIZE)
                       -fno-omit-frame-pointer)
   add_link_options(-fsanitize=${STICKREP_SANITIZE})
   message(STATUS "StickRep: sanitizers ${STICKREP_SANITIZE}")
+endif()
+
+option(STICKREP_FUZZ "Build only the libFuzzer targets (test/fuzz) and what they use; clang only"
+       OFF)
+if(STICKREP_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "STICKREP_FUZZ needs clang (libFuzzer): configure with "
+                        "-DCMAKE_CXX_COMPILER=clang++")
+  endif()
+  # Coverage feedback in every library; the fuzz targets link libFuzzer's main.
+  add_compile_options(-fsanitize=fuzzer-no-link)
+  set(STICKREP_BUILD_TESTS OFF CACHE BOOL "" FORCE)
+  set(STICKREP_BUILD_BENCHMARKS OFF CACHE BOOL "" FORCE)
 endif()

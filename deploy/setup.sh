@@ -14,6 +14,7 @@ packages=(
   iproute2 nftables                                           # the deploy test's two hosts
   libcli11-dev libfmt-dev nlohmann-json3-dev libspdlog-dev
   libsqlite3-dev                                              # recordings (components/bag)
+  clang libclang-rt-14-dev                                    # the fuzz targets (libFuzzer)
 )
 missing=()
 for p in "${packages[@]}"; do
