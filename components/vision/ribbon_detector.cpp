@@ -176,10 +176,32 @@ int RowsHit(const std::vector<std::uint8_t>& passed_mask, int n_rows, int width,
   return rows_hit;
 }
 
+// Mean over the processed rows that pass in bins [first, last] of each row's peak |response|,
+// in grey levels: the edge's own contrast, whatever else the frame holds.
+double ClumpContrast(const std::vector<int>& response, const std::vector<std::uint8_t>& passed_mask,
+                     int n_rows, int width, int first, int last) {
+  double sum = 0.0;
+  int rows = 0;
+  for (int i = 0; i < n_rows; ++i) {
+    const std::size_t base = static_cast<std::size_t>(i) * width;
+    int peak = 0;
+    for (int k = first; k <= last; ++k) {
+      if (passed_mask[base + k]) peak = std::max(peak, std::abs(response[base + k]));
+    }
+    if (peak > 0) {
+      sum += static_cast<double>(peak) / kPrewittScale;
+      ++rows;
+    }
+  }
+  return rows > 0 ? sum / rows : 0.0;
+}
+
 // Step (4): the clumps of the projection as footprints, left to right, each weighted by its
-// share of the frame's thresholded edge response.
-void ClumpFootprints(const Projection& proj, int n_rows, int width,
-                     const RibbonDetectorParams& params, std::vector<Footprint>* footprints) {
+// share of the frame's thresholded edge response. A chain of windows is cut where it would
+// grow wider than max_clump_width_px.
+void ClumpFootprints(const Projection& proj, const std::vector<int>& response, int n_rows,
+                     int width, const RibbonDetectorParams& params,
+                     std::vector<Footprint>* footprints) {
   const std::vector<int>& nonempty = proj.nonempty;
   std::vector<int> next_nonempty_linked(width, 0);  // bin c is joined to the next non-empty
   std::vector<std::uint8_t> member(width, 0);
@@ -197,6 +219,7 @@ void ClumpFootprints(const Projection& proj, int n_rows, int width,
     for (int k = c; k < width; ++k) {
       if (!nonempty[k]) continue;
       if (k != c && !next_nonempty_linked[last]) break;
+      if (k - c >= params.max_clump_width_px) break;
       fp.strength += proj.projection[k];
       polarity += proj.signed_sum[k];
       last = k;
@@ -206,6 +229,8 @@ void ClumpFootprints(const Projection& proj, int n_rows, int width,
     fp.column_px =
         HeaviestWindowColumn(proj.projection, fp.first_bin, fp.last_bin, params.clump_window_bins);
     fp.rows_hit = RowsHit(proj.passed_mask, n_rows, width, fp.first_bin, fp.last_bin);
+    fp.contrast =
+        ClumpContrast(response, proj.passed_mask, n_rows, width, fp.first_bin, fp.last_bin);
     total_strength += fp.strength;
     footprints->push_back(fp);
     c = last + 1;
@@ -213,32 +238,132 @@ void ClumpFootprints(const Projection& proj, int n_rows, int width,
   for (Footprint& fp : *footprints) fp.weight = fp.strength / total_strength;
 }
 
-// Step (5), candidate pairs, highest confidence first. Confidence: the geometric mean of the
-// two footprint weights (their share of the frame's edge energy), times each footprint's
-// vertical persistence (share of processed rows it appears in: "ribbon length is a strong
-// indicator of a large vertical feature", §4.1.1), times a penalty for like polarity.
+// The processed rows' mean grey level per column, as prefix sums: the appearance rule
+// reads band means from it in O(1).
+class RowProfile {
+ public:
+  RowProfile(const std::uint8_t* data, int width, std::size_t step, const std::vector<int>& rows)
+      : prefix_(width + 1, 0.0) {
+    std::vector<double> col(width, 0.0);
+    for (int r : rows) {
+      const std::uint8_t* row = data + static_cast<std::size_t>(r) * step;
+      for (int c = 0; c < width; ++c) col[c] += row[c];
+    }
+    const double n = rows.empty() ? 1.0 : static_cast<double>(rows.size());
+    for (int c = 0; c < width; ++c) prefix_[c + 1] = prefix_[c] + col[c] / n;
+  }
+  int width() const { return static_cast<int>(prefix_.size()) - 1; }
+  // Mean over columns [a, b] clipped to the image; NaN when nothing is left.
+  double Mean(double a, double b) const {
+    const int lo = std::max(0, static_cast<int>(std::ceil(a)));
+    const int hi = std::min(width() - 1, static_cast<int>(std::floor(b)));
+    if (hi < lo) return std::nan("");
+    return (prefix_[hi + 1] - prefix_[lo]) / (hi - lo + 1);
+  }
+
+ private:
+  std::vector<double> prefix_;
+};
+
+// The wall level round everything the frame shows: the row ends beyond the outermost
+// persistent edges, when both ends are there and agree; -1 otherwise.
+double GroundLevel(const RowProfile& profile, const std::vector<Footprint>& footprints, int n_rows,
+                   const RibbonDetectorParams& params) {
+  constexpr int kMinBandPx = 6;
+  int first = -1, last = -1;
+  for (const Footprint& fp : footprints) {
+    if (2 * fp.rows_hit < n_rows) continue;
+    if (first < 0) first = fp.first_bin;
+    last = fp.last_bin;
+  }
+  if (first < 0) return -1.0;
+  const int w = profile.width();
+  const double left_end = first - 3, right_start = last + 3;
+  if (left_end - kHalf + 1 < kMinBandPx || (w - 1 - kHalf) - right_start + 1 < kMinBandPx) {
+    return -1.0;
+  }
+  const double l = profile.Mean(kHalf, left_end);
+  const double r = profile.Mean(right_start, w - 1 - kHalf);
+  if (!(std::abs(l - r) <= params.ground_agreement)) return -1.0;
+  return 0.5 * (l + r);
+}
+
+// The appearance rule's readings for a pair, and its factor on the confidence.
+double Appearance(const RowProfile& profile, double ground, const RibbonDetectorParams& params,
+                  CandidatePair* pair) {
+  constexpr double kEdgeGapPx = 2.0;  // the edge's own blur
+  const double lj = pair->left_px, rj = pair->right_px, w = pair->width_px;
+  const double near = std::clamp(0.15 * w, 3.0, 12.0);
+  const double far = std::clamp(0.35 * w, 4.0, 40.0);
+  const double inset = std::min(kEdgeGapPx, 0.25 * w);
+  pair->interior = profile.Mean(lj + inset, rj - inset);
+  pair->left_flank = profile.Mean(lj - kEdgeGapPx - near, lj - kEdgeGapPx);
+  pair->right_flank = profile.Mean(rj + kEdgeGapPx, rj + kEdgeGapPx + near);
+  const double far_l = profile.Mean(lj - kEdgeGapPx - near - far, lj - kEdgeGapPx - near);
+  const double far_r = profile.Mean(rj + kEdgeGapPx + near, rj + kEdgeGapPx + near + far);
+  pair->far_flank = std::isnan(far_l) ? far_r : std::isnan(far_r) ? far_l : 0.5 * (far_l + far_r);
+  double factor = 0.5;
+  const double dl = pair->interior - pair->left_flank;
+  const double dr = pair->interior - pair->right_flank;
+  if (std::isnan(dl) || std::isnan(dr)) {
+    factor = 0.75;  // a flank outside the image: no evidence either way
+  } else if (dl * dr > 0.0) {
+    // A face against both flanks; balanced contrast scores highest.
+    factor = 0.5 + 0.5 * std::min(std::abs(dl), std::abs(dr)) /
+                       std::max(std::abs(dl), std::abs(dr));
+  }
+  if (ground >= 0.0 && !std::isnan(pair->far_flank) && !std::isnan(pair->interior) &&
+      std::abs(pair->interior - ground) + 0.5 * params.ground_agreement <
+          std::abs(pair->far_flank - ground)) {
+    pair->ground_reversed = true;
+    factor *= params.reversed_ground_factor;
+  }
+  return factor;
+}
+
+// Confidence of the pair of footprints l, r (see RibbonDetectorParams::Confidence).
+double PairConfidence(const Footprint& l, const Footprint& r, int n_rows,
+                      const RibbonDetectorParams& params) {
+  const double persistence = (static_cast<double>(l.rows_hit) / n_rows) *
+                             (static_cast<double>(r.rows_hit) / n_rows);
+  const double polarity = l.polarity != r.polarity ? 1.0 : params.same_polarity_factor;
+  if (params.confidence == RibbonDetectorParams::Confidence::kEnergyShare) {
+    return std::sqrt(l.weight * r.weight) * persistence * polarity;
+  }
+  auto score = [&](double c) { return c / (c + params.half_contrast); };
+  return std::sqrt(score(l.contrast) * score(r.contrast)) * persistence * polarity;
+}
+
+// Step (5), candidate pairs within the width limits, highest confidence first, at most
+// max_pairs. Confidence: PairConfidence, times the appearance rule's factor when it is on.
 void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
-                    const RibbonDetectorParams& params, std::vector<CandidatePair>* pairs) {
+                    const RibbonDetectorParams& params, const RowProfile& profile,
+                    RibbonDetection* det) {
   const int n_fp = static_cast<int>(footprints.size());
+  const bool appearance = params.appearance_rule &&
+                          params.confidence == RibbonDetectorParams::Confidence::kAbsolute;
+  det->ground = appearance ? GroundLevel(profile, footprints, n_rows, params) : -1.0;
+  const double min_w = std::max(params.min_pair_width_px, det->width_limits.min_px);
+  const double max_w = std::min(params.max_pair_width_px, det->width_limits.max_px);
+  std::vector<CandidatePair>* pairs = &det->pairs;
   for (int i = 0; i < n_fp; ++i) {
     const Footprint& l = footprints[i];
     for (int j = i + 1; j < n_fp; ++j) {
       const Footprint& r = footprints[j];
       const double w = r.column_px - l.column_px;
-      if (w < params.min_pair_width_px || w > params.max_pair_width_px) continue;
+      if (w < min_w || w > max_w) continue;
       CandidatePair pair;
       pair.left_px = l.column_px;
       pair.right_px = r.column_px;
       pair.width_px = w;
       pair.left_index = i;
       pair.right_index = j;
-      pair.confidence = std::sqrt(l.weight * r.weight) *
-                        (static_cast<double>(l.rows_hit) / n_rows) *
-                        (static_cast<double>(r.rows_hit) / n_rows) *
-                        (l.polarity != r.polarity ? 1.0 : params.same_polarity_factor);
+      pair.confidence = PairConfidence(l, r, n_rows, params);
+      if (appearance) pair.confidence *= Appearance(profile, det->ground, params, &pair);
       pairs->push_back(pair);
     }
   }
+  det->pairs_before_cap = static_cast<int>(pairs->size());
   std::stable_sort(
       pairs->begin(), pairs->end(),
       [](const CandidatePair& a, const CandidatePair& b) { return a.confidence > b.confidence; });
@@ -290,6 +415,13 @@ RibbonDetector::RibbonDetector(RibbonDetectorParams params) : params_(params) {
         "ribbon detector: need near_range_in > 0 in, center_row_spacing_px >= 1, "
         "0 < outer_row_fraction <= 1");
   }
+  if (p.max_clump_width_px < p.clump_window_bins || !(p.half_contrast > 0.0) ||
+      !(p.ground_agreement >= 0.0) ||
+      !(p.reversed_ground_factor >= 0.0 && p.reversed_ground_factor <= 1.0)) {
+    throw std::invalid_argument(
+        "ribbon detector: need max_clump_width_px >= clump_window_bins, half_contrast > 0, "
+        "ground_agreement >= 0, reversed_ground_factor in [0, 1]");
+  }
   if (!(p.min_edge_level >= 0.0) || !(p.min_pair_width_px >= 0.0) ||
       !(p.max_pair_width_px > p.min_pair_width_px) ||
       !(p.same_polarity_factor >= 0.0 && p.same_polarity_factor <= 1.0) || p.max_pairs < 0) {
@@ -322,6 +454,15 @@ std::vector<int> RibbonDetector::SampledRows(int height_px, double coaxial_range
 }
 
 DetectResult RibbonDetector::Detect(const cv::Mat& image, double coaxial_range_in) const {
+  return Detect(image, coaxial_range_in, PairWidthLimits{});
+}
+
+DetectResult RibbonDetector::Detect(const ImageView& image, double coaxial_range_in) const {
+  return Detect(image, coaxial_range_in, PairWidthLimits{});
+}
+
+DetectResult RibbonDetector::Detect(const cv::Mat& image, double coaxial_range_in,
+                                    const PairWidthLimits& limits) const {
   if (image.empty() || image.cols <= 0 || image.rows <= 0) {
     return Error(DetectStatus::kEmptyFrame, "empty frame");
   }
@@ -329,10 +470,11 @@ DetectResult RibbonDetector::Detect(const cv::Mat& image, double coaxial_range_i
     return Error(DetectStatus::kUnknownEncoding,
                  "frame type " + std::to_string(image.type()) + " is not CV_8UC1 (mono8)");
   }
-  return Run(image.data, image.cols, image.rows, image.step[0], coaxial_range_in);
+  return Run(image.data, image.cols, image.rows, image.step[0], coaxial_range_in, limits);
 }
 
-DetectResult RibbonDetector::Detect(const ImageView& image, double coaxial_range_in) const {
+DetectResult RibbonDetector::Detect(const ImageView& image, double coaxial_range_in,
+                                    const PairWidthLimits& limits) const {
   if (image.width_px <= 0 || image.height_px <= 0 || image.data == nullptr ||
       image.size_bytes == 0) {
     return Error(DetectStatus::kEmptyFrame, "empty frame (" + std::to_string(image.width_px) +
@@ -358,11 +500,11 @@ DetectResult RibbonDetector::Detect(const ImageView& image, double coaxial_range
                      std::to_string(image.step_bytes) + " = " + std::to_string(expected));
   }
   return Run(image.data, image.width_px, image.height_px,
-             static_cast<std::size_t>(image.step_bytes), coaxial_range_in);
+             static_cast<std::size_t>(image.step_bytes), coaxial_range_in, limits);
 }
 
 DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height, std::size_t step,
-                                 double coaxial_range_in) const {
+                                 double coaxial_range_in, const PairWidthLimits& limits) const {
   if (width < 2 * kHalf + 1 || height < 2 * kHalf + 1) {
     return Error(DetectStatus::kTooSmall, "frame " + std::to_string(width) + " x " +
                                               std::to_string(height) +
@@ -388,8 +530,10 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   const int threshold_scaled = ThresholdScaled(response, n_rows, width, params_);
   det.threshold = static_cast<double>(threshold_scaled) / kPrewittScale;
   const Projection proj = Project(response, n_rows, width, threshold_scaled);
-  ClumpFootprints(proj, n_rows, width, params_, &det.footprints);
-  PairFootprints(det.footprints, n_rows, params_, &det.pairs);
+  ClumpFootprints(proj, response, n_rows, width, params_, &det.footprints);
+  det.width_limits = limits;
+  const RowProfile profile(data, width, step, det.rows);
+  PairFootprints(det.footprints, n_rows, params_, profile, &det);
   return result;
 }
 
