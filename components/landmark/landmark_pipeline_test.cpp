@@ -71,10 +71,15 @@ Frame Render(const world::Scene& scene, const world::Pose2d& X_WR, double roll_d
   return out;
 }
 
-FrameOutcome Process(const Frame& frame, CasingRule rule = {}) {
-  const LandmarkPipeline pipeline(sensing::RobotConfig{}, vision::RibbonDetectorParams{},
+FrameOutcome ProcessWith(const Frame& frame, const vision::RibbonDetectorParams& detector,
+                         CasingRule rule = {}) {
+  const LandmarkPipeline pipeline(sensing::RobotConfig{}, detector,
                                   sensing::LandmarkEstimatorConfig{}, rule);
   return pipeline.Process(frame.view(), frame.scan);
+}
+
+FrameOutcome Process(const Frame& frame, CasingRule rule = {}) {
+  return ProcessWith(frame, vision::RibbonDetectorParams{}, rule);
 }
 
 // The observation is of the door's jambs (not its casing) and of the given class.
@@ -102,12 +107,20 @@ TEST(LandmarkPipelineTest, Classifies30InDoorAtEightFeetBy30WhereItsCasingReads3
   // pipeline (docs/measured_error_model.md), not the casing.
   const Frame frame = Render(DoorScene(30), Facing(30, 96.0, -3.0));
   ExpectJambsClassified(frame, Process(frame), DoorClass::k30);
-  // Without the rule the most confident pair is the casing: 30 + 2 x 3 in, class 36.
+  // Without the rule, and without the detector's one-face rule, the most confident pair
+  // is the casing: 30 + 2 x 3 in, class 36.
   CasingRule off;
   off.enabled = false;
-  const FrameOutcome without = Process(frame, off);
+  vision::RibbonDetectorParams any_face;
+  any_face.two_faces_factor = 1.0;
+  const FrameOutcome without = ProcessWith(frame, any_face, off);
   ASSERT_EQ(without.kind, FrameOutcome::Kind::kObservation) << without.reason;
   EXPECT_EQ(without.observation.door_class, DoorClass::k36);
+  // The one-face rule alone marks the casing pair down (its casing-to-opening edges step
+  // between two faces inside it): the opening is classified even without the casing rule.
+  const FrameOutcome one_face = Process(frame, off);
+  ASSERT_EQ(one_face.kind, FrameOutcome::Kind::kObservation) << one_face.reason;
+  EXPECT_EQ(one_face.observation.door_class, DoorClass::k30);
 }
 
 TEST(LandmarkPipelineTest, Classifies32InDoorAtEightFeetBy32WhereItsCasingReads40) {
@@ -115,7 +128,9 @@ TEST(LandmarkPipelineTest, Classifies32InDoorAtEightFeetBy32WhereItsCasingReads4
   ExpectJambsClassified(frame, Process(frame), DoorClass::k32);
   CasingRule off;
   off.enabled = false;
-  const FrameOutcome without = Process(frame, off);
+  vision::RibbonDetectorParams any_face;
+  any_face.two_faces_factor = 1.0;
+  const FrameOutcome without = ProcessWith(frame, any_face, off);
   ASSERT_EQ(without.kind, FrameOutcome::Kind::kObservation) << without.reason;
   EXPECT_EQ(without.observation.door_class, DoorClass::k40);
 }

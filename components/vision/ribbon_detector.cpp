@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace stickrep::vision {
@@ -321,6 +322,50 @@ double Appearance(const RowProfile& profile, double ground, const RibbonDetector
   return factor;
 }
 
+// Whether a persistent footprint strictly inside the pair steps between two levels by at
+// least half the pair's weaker edge contrast (RibbonDetectorParams::two_faces_factor).
+bool SpansTwoFaces(const RowProfile& profile, const std::vector<Footprint>& footprints,
+                   int n_rows, const CandidatePair& pair) {
+  constexpr double kGapPx = 3.0, kBandPx = 8.0;
+  const double weaker = std::min(std::abs(pair.interior - pair.left_flank),
+                                 std::abs(pair.interior - pair.right_flank));
+  if (std::isnan(weaker)) return false;
+  for (int k = pair.left_index + 1; k < pair.right_index; ++k) {
+    const Footprint& f = footprints[k];
+    if (f.rows_hit < n_rows - 1 || f.column_px - pair.left_px < 4.0 ||
+        pair.right_px - f.column_px < 4.0) {
+      continue;
+    }
+    const double left = profile.Mean(std::max(pair.left_px + 2.0, f.column_px - kGapPx - kBandPx),
+                                      f.column_px - kGapPx);
+    const double right = profile.Mean(
+        f.column_px + kGapPx, std::min(pair.right_px - 2.0, f.column_px + kGapPx + kBandPx));
+    if (!std::isnan(left) && !std::isnan(right) && std::abs(left - right) >= 0.5 * weaker &&
+        std::abs(left - right) >= 10.0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Whether the pair's face still contrasts with both flanks by min_contrast at the rows of
+// `header` (the header or the foot rows, RibbonDetectorParams), with the sign it has in
+// the processed rows.
+bool FaceContinuesAt(const RowProfile* header, const CandidatePair& pair, double min_contrast) {
+  if (header == nullptr) return false;
+  constexpr double kEdgeGapPx = 2.0;
+  const double near = std::clamp(0.15 * pair.width_px, 3.0, 12.0);
+  const double inset = std::min(kEdgeGapPx, 0.25 * pair.width_px);
+  const double i = header->Mean(pair.left_px + inset, pair.right_px - inset);
+  const double l = header->Mean(pair.left_px - kEdgeGapPx - near, pair.left_px - kEdgeGapPx);
+  const double r = header->Mean(pair.right_px + kEdgeGapPx, pair.right_px + kEdgeGapPx + near);
+  const double sign = pair.interior - 0.5 * (pair.left_flank + pair.right_flank);
+  if (std::isnan(i) || std::isnan(l) || std::isnan(r) || std::isnan(sign)) return false;
+  const double dl = i - l, dr = i - r;
+  return dl * sign > 0.0 && dr * sign > 0.0 &&
+         std::min(std::abs(dl), std::abs(dr)) >= min_contrast;
+}
+
 // Confidence of the pair of footprints l, r (see RibbonDetectorParams::Confidence).
 double PairConfidence(const Footprint& l, const Footprint& r, int n_rows,
                       const RibbonDetectorParams& params) {
@@ -338,7 +383,7 @@ double PairConfidence(const Footprint& l, const Footprint& r, int n_rows,
 // max_pairs. Confidence: PairConfidence, times the appearance rule's factor when it is on.
 void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
                     const RibbonDetectorParams& params, const RowProfile& profile,
-                    RibbonDetection* det) {
+                    const RowProfile* header, const RowProfile* foot, RibbonDetection* det) {
   const int n_fp = static_cast<int>(footprints.size());
   const bool appearance = params.appearance_rule &&
                           params.confidence == RibbonDetectorParams::Confidence::kAbsolute;
@@ -359,7 +404,15 @@ void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
       pair.left_index = i;
       pair.right_index = j;
       pair.confidence = PairConfidence(l, r, n_rows, params);
-      if (appearance) pair.confidence *= Appearance(profile, det->ground, params, &pair);
+      if (appearance) {
+        pair.confidence *= Appearance(profile, det->ground, params, &pair);
+        pair.two_faces = SpansTwoFaces(profile, footprints, n_rows, pair);
+        if (pair.two_faces) pair.confidence *= params.two_faces_factor;
+        pair.tall_face = FaceContinuesAt(header, pair, params.min_tall_contrast);
+        if (pair.tall_face) pair.confidence *= params.tall_face_factor;
+        pair.short_face = foot != nullptr && !FaceContinuesAt(foot, pair, params.min_foot_contrast);
+        if (pair.short_face) pair.confidence *= params.short_face_factor;
+      }
       pairs->push_back(pair);
     }
   }
@@ -417,10 +470,16 @@ RibbonDetector::RibbonDetector(RibbonDetectorParams params) : params_(params) {
   }
   if (p.max_clump_width_px < p.clump_window_bins || !(p.half_contrast > 0.0) ||
       !(p.ground_agreement >= 0.0) ||
-      !(p.reversed_ground_factor >= 0.0 && p.reversed_ground_factor <= 1.0)) {
+      !(p.reversed_ground_factor >= 0.0 && p.reversed_ground_factor <= 1.0) ||
+      !(p.two_faces_factor >= 0.0 && p.two_faces_factor <= 1.0) ||
+      !(p.tall_face_factor >= 0.0 && p.tall_face_factor <= 1.0) || !(p.focal_px > 0.0) ||
+      !(p.header_height_in > p.camera_height_in) || !(p.min_tall_contrast >= 0.0) ||
+      !(p.foot_height_in < p.camera_height_in) || !(p.min_foot_contrast >= 0.0) ||
+      !(p.short_face_factor >= 0.0 && p.short_face_factor <= 1.0)) {
     throw std::invalid_argument(
         "ribbon detector: need max_clump_width_px >= clump_window_bins, half_contrast > 0, "
-        "ground_agreement >= 0, reversed_ground_factor in [0, 1]");
+        "ground_agreement >= 0, the appearance factors in [0, 1], focal_px > 0, "
+        "header_height_in > camera_height_in, min_tall_contrast >= 0");
   }
   if (!(p.min_edge_level >= 0.0) || !(p.min_pair_width_px >= 0.0) ||
       !(p.max_pair_width_px > p.min_pair_width_px) ||
@@ -533,7 +592,23 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   ClumpFootprints(proj, response, n_rows, width, params_, &det.footprints);
   det.width_limits = limits;
   const RowProfile profile(data, width, step, det.rows);
-  PairFootprints(det.footprints, n_rows, params_, profile, &det);
+  // The header rows above door height and the foot rows near the floor at the coaxial
+  // range (three each, for the noise), when they are in the image.
+  std::unique_ptr<RowProfile> header, foot;
+  if (five_rows && params_.appearance_rule) {
+    auto rows_at = [&](double height_in) -> std::unique_ptr<RowProfile> {
+      const int row = static_cast<int>(std::lround(
+          (height - 1) / 2.0 -
+          params_.focal_px * (height_in - params_.camera_height_in) / coaxial_range_in));
+      if (row < 1 || row > height - 2 || (row >= det.rows.front() - 8 && row <= det.rows.back() + 8)) {
+        return nullptr;
+      }
+      return std::make_unique<RowProfile>(data, width, step, std::vector<int>{row - 1, row, row + 1});
+    };
+    header = rows_at(params_.header_height_in);
+    foot = rows_at(params_.foot_height_in);
+  }
+  PairFootprints(det.footprints, n_rows, params_, profile, header.get(), foot.get(), &det);
   return result;
 }
 

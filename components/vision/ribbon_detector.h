@@ -101,6 +101,28 @@ struct RibbonDetectorParams {
   bool appearance_rule = true;
   double ground_agreement = 25.0;
   double reversed_ground_factor = 0.3;  // a pair whose interior is the ground
+  // One face: a persistent edge inside the pair (in all processed rows but one) that steps
+  // between two levels by at least half the pair's weaker edge contrast means the pair
+  // spans two faces (a door and the strip beside it, a casing and its opening). A thin
+  // line (a double door's seam) has one level on both sides and is not such an edge.
+  double two_faces_factor = 0.5;
+  // Door height: a door's jambs end at its head (a standard door is 80 in, its casing 3 in
+  // more, §6 of the text's domain), the wall goes on above it. Where the row at
+  // header_height_in above the floor (at the coaxial range, camera_height_in up, focal_px)
+  // is in the image, a pair whose face still contrasts with both flanks there by
+  // min_tall_contrast grey levels (the sign as in the processed rows) is a full-height
+  // strip or pilaster, not a door.
+  double header_height_in = 90.0;
+  double camera_height_in = 40.0;  // not in the text; configs/robot.yaml's camera
+  double focal_px = 483.3;         // 512 px over 55.817° (§5.4)
+  double min_tall_contrast = 20.0;
+  double tall_face_factor = 0.3;
+  // A door reaches the floor: where the row at foot_height_in is in the image, a pair whose
+  // face does not contrast with both flanks there (same sign, min_foot_contrast grey
+  // levels) ends above the floor (a poster, a notice board, a window) and is marked down.
+  double foot_height_in = 14.0;
+  double min_foot_contrast = 8.0;
+  double short_face_factor = 0.5;
 };
 
 // Image widths a door can have in this frame (the landmark pipeline computes them from the
@@ -135,6 +157,9 @@ struct CandidatePair {
   double left_flank = 0.0, right_flank = 0.0;
   double far_flank = 0.0;
   bool ground_reversed = false;  // the interior looks like the wall, the flanks do not
+  bool two_faces = false;        // a persistent step inside the pair
+  bool tall_face = false;        // the face goes on above door height
+  bool short_face = false;       // the face ends above the floor
   int left_index = -1;  // into RibbonDetection::footprints
   int right_index = -1;
 };
