@@ -349,21 +349,33 @@ bool SpansTwoFaces(const RowProfile& profile, const std::vector<Footprint>& foot
 }
 
 // Whether the pair's face still contrasts with both flanks by min_contrast at the rows of
-// `header` (the header or the foot rows, RibbonDetectorParams), with the sign it has in
-// the processed rows.
-bool FaceContinuesAt(const RowProfile* header, const CandidatePair& pair, double min_contrast) {
-  if (header == nullptr) return false;
+// `rows` (the foot rows, RibbonDetectorParams), with the sign it has in the processed rows.
+bool FaceContinuesAt(const RowProfile* rows, const CandidatePair& pair, double min_contrast) {
+  if (rows == nullptr) return false;
   constexpr double kEdgeGapPx = 2.0;
   const double near = std::clamp(0.15 * pair.width_px, 3.0, 12.0);
   const double inset = std::min(kEdgeGapPx, 0.25 * pair.width_px);
-  const double i = header->Mean(pair.left_px + inset, pair.right_px - inset);
-  const double l = header->Mean(pair.left_px - kEdgeGapPx - near, pair.left_px - kEdgeGapPx);
-  const double r = header->Mean(pair.right_px + kEdgeGapPx, pair.right_px + kEdgeGapPx + near);
+  const double i = rows->Mean(pair.left_px + inset, pair.right_px - inset);
+  const double l = rows->Mean(pair.left_px - kEdgeGapPx - near, pair.left_px - kEdgeGapPx);
+  const double r = rows->Mean(pair.right_px + kEdgeGapPx, pair.right_px + kEdgeGapPx + near);
   const double sign = pair.interior - 0.5 * (pair.left_flank + pair.right_flank);
   if (std::isnan(i) || std::isnan(l) || std::isnan(r) || std::isnan(sign)) return false;
   const double dl = i - l, dr = i - r;
   return dl * sign > 0.0 && dr * sign > 0.0 &&
          std::min(std::abs(dl), std::abs(dr)) >= min_contrast;
+}
+
+// Whether the pair's interior keeps its level over every row of the head band (no head:
+// RibbonDetectorParams::head_low_in).
+bool NoHead(const std::vector<RowProfile>& head_band, const CandidatePair& pair,
+            double min_contrast) {
+  if (head_band.size() < 3 || std::isnan(pair.interior)) return false;
+  const double inset = std::min(2.0, 0.25 * pair.width_px);
+  for (const RowProfile& row : head_band) {
+    const double level = row.Mean(pair.left_px + inset, pair.right_px - inset);
+    if (std::isnan(level) || std::abs(level - pair.interior) >= min_contrast) return false;
+  }
+  return true;
 }
 
 // Confidence of the pair of footprints l, r (see RibbonDetectorParams::Confidence).
@@ -383,7 +395,8 @@ double PairConfidence(const Footprint& l, const Footprint& r, int n_rows,
 // max_pairs. Confidence: PairConfidence, times the appearance rule's factor when it is on.
 void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
                     const RibbonDetectorParams& params, const RowProfile& profile,
-                    const RowProfile* header, const RowProfile* foot, RibbonDetection* det) {
+                    const std::vector<RowProfile>& head_band, const RowProfile* foot,
+                    RibbonDetection* det) {
   const int n_fp = static_cast<int>(footprints.size());
   const bool appearance = params.appearance_rule &&
                           params.confidence == RibbonDetectorParams::Confidence::kAbsolute;
@@ -408,7 +421,7 @@ void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
         pair.confidence *= Appearance(profile, det->ground, params, &pair);
         pair.two_faces = SpansTwoFaces(profile, footprints, n_rows, pair);
         if (pair.two_faces) pair.confidence *= params.two_faces_factor;
-        pair.tall_face = FaceContinuesAt(header, pair, params.min_tall_contrast);
+        pair.tall_face = NoHead(head_band, pair, params.min_tall_contrast);
         if (pair.tall_face) pair.confidence *= params.tall_face_factor;
         pair.short_face = foot != nullptr && !FaceContinuesAt(foot, pair, params.min_foot_contrast);
         if (pair.short_face) pair.confidence *= params.short_face_factor;
@@ -473,13 +486,14 @@ RibbonDetector::RibbonDetector(RibbonDetectorParams params) : params_(params) {
       !(p.reversed_ground_factor >= 0.0 && p.reversed_ground_factor <= 1.0) ||
       !(p.two_faces_factor >= 0.0 && p.two_faces_factor <= 1.0) ||
       !(p.tall_face_factor >= 0.0 && p.tall_face_factor <= 1.0) || !(p.focal_px > 0.0) ||
-      !(p.header_height_in > p.camera_height_in) || !(p.min_tall_contrast >= 0.0) ||
+      !(p.header_height_in > p.head_low_in) || !(p.head_low_in > p.camera_height_in) ||
+      !(p.min_tall_contrast >= 0.0) ||
       !(p.foot_height_in < p.camera_height_in) || !(p.min_foot_contrast >= 0.0) ||
       !(p.short_face_factor >= 0.0 && p.short_face_factor <= 1.0)) {
     throw std::invalid_argument(
         "ribbon detector: need max_clump_width_px >= clump_window_bins, half_contrast > 0, "
         "ground_agreement >= 0, the appearance factors in [0, 1], focal_px > 0, "
-        "header_height_in > camera_height_in, min_tall_contrast >= 0");
+        "header_height_in > head_low_in > camera_height_in, min_tall_contrast >= 0");
   }
   if (!(p.min_edge_level >= 0.0) || !(p.min_pair_width_px >= 0.0) ||
       !(p.max_pair_width_px > p.min_pair_width_px) ||
@@ -592,23 +606,30 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   ClumpFootprints(proj, response, n_rows, width, params_, &det.footprints);
   det.width_limits = limits;
   const RowProfile profile(data, width, step, det.rows);
-  // The header rows above door height and the foot rows near the floor at the coaxial
-  // range (three each, for the noise), when they are in the image.
-  std::unique_ptr<RowProfile> header, foot;
+  // The head band (every few rows between head_low_in and header_height_in) and the foot
+  // rows near the floor at the coaxial range, where the image shows them.
+  std::vector<RowProfile> head_band;
+  std::unique_ptr<RowProfile> foot;
   if (five_rows && params_.appearance_rule) {
-    auto rows_at = [&](double height_in) -> std::unique_ptr<RowProfile> {
-      const int row = static_cast<int>(std::lround(
+    auto row_of = [&](double height_in) {
+      return static_cast<int>(std::lround(
           (height - 1) / 2.0 -
           params_.focal_px * (height_in - params_.camera_height_in) / coaxial_range_in));
-      if (row < 1 || row > height - 2 || (row >= det.rows.front() - 8 && row <= det.rows.back() + 8)) {
-        return nullptr;
-      }
-      return std::make_unique<RowProfile>(data, width, step, std::vector<int>{row - 1, row, row + 1});
     };
-    header = rows_at(params_.header_height_in);
-    foot = rows_at(params_.foot_height_in);
+    constexpr int kHeadStepPx = 4;
+    const int top = row_of(params_.header_height_in);
+    const int bottom = std::min(row_of(params_.head_low_in), det.rows.front() - 4);
+    if (top >= 1) {
+      for (int r = top; r <= bottom; r += kHeadStepPx) {
+        head_band.emplace_back(data, width, step, std::vector<int>{r});
+      }
+    }
+    const int f = row_of(params_.foot_height_in);
+    if (f >= 1 && f <= height - 2 && f > det.rows.back() + 8) {
+      foot = std::make_unique<RowProfile>(data, width, step, std::vector<int>{f - 1, f, f + 1});
+    }
   }
-  PairFootprints(det.footprints, n_rows, params_, profile, header.get(), foot.get(), &det);
+  PairFootprints(det.footprints, n_rows, params_, profile, head_band, foot.get(), &det);
   return result;
 }
 

@@ -106,12 +106,14 @@ struct RibbonDetectorParams {
   // spans two faces (a door and the strip beside it, a casing and its opening). A thin
   // line (a double door's seam) has one level on both sides and is not such an edge.
   double two_faces_factor = 0.5;
-  // Door height: a door's jambs end at its head (a standard door is 80 in, its casing 3 in
-  // more, §6 of the text's domain), the wall goes on above it. Where the row at
-  // header_height_in above the floor (at the coaxial range, camera_height_in up, focal_px)
-  // is in the image, a pair whose face still contrasts with both flanks there by
-  // min_tall_contrast grey levels (the sign as in the processed rows) is a full-height
-  // strip or pilaster, not a door.
+  // Door height: a door's face ends at its head (a standard door is 80 in, its casing 3 in
+  // more), while the wall between two doors and a pilaster go on to the ceiling. Where the
+  // image shows the band from head_low_in to header_height_in above the floor (at the
+  // coaxial range, camera_height_in up, focal_px), the pair's interior is read every few
+  // rows up that band: a door's changes there by min_tall_contrast grey levels from its
+  // level in the processed rows (its head casing, the wall above it); a face that does not
+  // change is a full-height strip and is marked down.
+  double head_low_in = 70.0;
   double header_height_in = 90.0;
   double camera_height_in = 40.0;  // not in the text; configs/robot.yaml's camera
   double focal_px = 483.3;         // 512 px over 55.817° (§5.4)
@@ -158,7 +160,7 @@ struct CandidatePair {
   double far_flank = 0.0;
   bool ground_reversed = false;  // the interior looks like the wall, the flanks do not
   bool two_faces = false;        // a persistent step inside the pair
-  bool tall_face = false;        // the face goes on above door height
+  bool tall_face = false;        // the face goes on above door height (no head seen)
   bool short_face = false;       // the face ends above the floor
   int left_index = -1;  // into RibbonDetection::footprints
   int right_index = -1;

@@ -124,10 +124,14 @@ void AddNoticeBoards(const RealismOptions& o, std::mt19937_64& rng, World* world
   }
 }
 
-// Dark wood leaf and casing.
-void MakeDark(DoorFeature* door, std::mt19937_64& rng) {
+// A dark wood leaf in a frame that is, with equal odds, dark metal or wood like the leaf
+// (then the opening barely shows and the casing's outer edges are the door's) or painted
+// trim a shade under the wall.
+void MakeDark(DoorFeature* door, int wall_intensity, std::mt19937_64& rng) {
   door->face_intensity = ClampGrey(Uniform(rng, 40.0, 80.0));
-  door->frame_intensity = ClampGrey(door->face_intensity + Uniform(rng, -15.0, 10.0));
+  const double u = Uniform(rng, 0.0, 1.0);
+  door->frame_intensity = u < 0.5 ? ClampGrey(door->face_intensity + Uniform(rng, -15.0, 10.0))
+                                  : ClampGrey(wall_intensity - Uniform(rng, 10.0, 30.0));
 }
 
 // Pilasters and panels between doors closer than pilaster_max_gap_in.
@@ -141,8 +145,8 @@ void AddPilasters(const RealismOptions& o, std::mt19937_64& rng, World* world) {
       const double s0 = a.offset_in + a.width_in + a.frame_width_in;
       const double s1 = b.offset_in - b.frame_width_in;
       if (s1 - s0 < 4.0 || s1 - s0 > o.pilaster_max_gap_in) continue;
-      MakeDark(&a, rng);
-      MakeDark(&b, rng);
+      MakeDark(&a, wall.intensity, rng);
+      MakeDark(&b, wall.intensity, rng);
       WallDecoration strip;
       strip.wall_index = wi;
       const bool panel = Uniform(rng, 0.0, 1.0) < 0.5;
@@ -161,7 +165,7 @@ void DrawDoorLooks(const RealismOptions& o, std::mt19937_64& rng, World* world) 
   for (DoorFeature& door : world->doors) {
     const double u = Uniform(rng, 0.0, 1.0);
     if (u < o.dark_door_share) {
-      MakeDark(&door, rng);
+      MakeDark(&door, world->walls[door.wall_index].intensity, rng);
     } else if (u < o.dark_door_share + o.white_door_share) {
       // White on white: the leaf within a few grey levels of its wall, the casing a shade
       // darker (paint edge and shadow).
