@@ -197,6 +197,35 @@ double ClumpContrast(const std::vector<int>& response, const std::vector<std::ui
   return rows > 0 ? sum / rows : 0.0;
 }
 
+// Persistence and contrast of the edge at fp over the processed rows, tolerant to roll
+// (RibbonDetectorParams::max_roll_deg): per row, the peak passed response of the edge's
+// polarity within the row's window round the footprint.
+void RollTolerantHits(const std::vector<int>& response, const std::vector<std::uint8_t>& mask,
+                      const std::vector<int>& rows, int width, int height,
+                      const RibbonDetectorParams& params, Footprint* fp) {
+  const double tan_roll = std::tan(params.max_roll_deg * 3.14159265358979323846 / 180.0);
+  const double centre_row = (height - 1) / 2.0;
+  int hit = 0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double tol = 2.0 + tan_roll * std::abs(rows[i] - centre_row);
+    const int lo = std::max(0, static_cast<int>(std::floor(fp->column_px - tol)));
+    const int hi = std::min(width - 1, static_cast<int>(std::ceil(fp->column_px + tol)));
+    const std::size_t base = i * static_cast<std::size_t>(width);
+    int peak = 0;
+    for (int k = lo; k <= hi; ++k) {
+      const int v = response[base + k];
+      if (mask[base + k] && (v > 0) == (fp->polarity > 0)) peak = std::max(peak, std::abs(v));
+    }
+    if (peak > 0) {
+      ++hit;
+      sum += static_cast<double>(peak) / kPrewittScale;
+    }
+  }
+  fp->rows_hit = std::max(fp->rows_hit, hit);
+  if (hit > 0) fp->contrast = sum / hit;
+}
+
 // Step (4): the clumps of the projection as footprints, left to right, each weighted by its
 // share of the frame's thresholded edge response. A chain of windows is cut where it would
 // grow wider than max_clump_width_px.
@@ -482,6 +511,7 @@ RibbonDetector::RibbonDetector(RibbonDetectorParams params) : params_(params) {
         "0 < outer_row_fraction <= 1");
   }
   if (p.max_clump_width_px < p.clump_window_bins || !(p.half_contrast > 0.0) ||
+      !(p.max_roll_deg >= 0.0 && p.max_roll_deg < 45.0) ||
       !(p.ground_agreement >= 0.0) ||
       !(p.reversed_ground_factor >= 0.0 && p.reversed_ground_factor <= 1.0) ||
       !(p.two_faces_factor >= 0.0 && p.two_faces_factor <= 1.0) ||
@@ -604,6 +634,11 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   det.threshold = static_cast<double>(threshold_scaled) / kPrewittScale;
   const Projection proj = Project(response, n_rows, width, threshold_scaled);
   ClumpFootprints(proj, response, n_rows, width, params_, &det.footprints);
+  if (params_.confidence == RibbonDetectorParams::Confidence::kAbsolute) {
+    for (Footprint& fp : det.footprints) {
+      RollTolerantHits(response, proj.passed_mask, det.rows, width, height, params_, &fp);
+    }
+  }
   det.width_limits = limits;
   const RowProfile profile(data, width, step, det.rows);
   // The head band (every few rows between head_low_in and header_height_in) and the foot

@@ -88,6 +88,12 @@ struct RibbonDetectorParams {
   //    energy, times persistence and the polarity factor (before issue 17: a door-free frame
   //    of posters scored above real doors, because a share is relative to its own frame).
   enum class Confidence { kAbsolute, kEnergyShare };
+  // kAbsolute: an edge rolled by up to this much (§4.1.1: 10°) crosses a processed row
+  // within tan(max_roll) times the row's distance from the centre row (plus 2 px) of the
+  // footprint: it counts as hit there when a passed pixel of the edge's polarity lies in
+  // that window. With the clump bounded, a rolled edge's outer-row hits are clumps of their
+  // own; this keeps its persistence and contrast whole.
+  double max_roll_deg = 10.0;
   Confidence confidence = Confidence::kAbsolute;
   // kAbsolute: an edge of this contrast (grey levels) scores one half; c / (c + half).
   double half_contrast = 20.0;
