@@ -193,128 +193,142 @@ bool LightSpan(const CeilingLight& light, const Eigen::Vector2d& origin,
   return true;
 }
 
-}  // namespace
+// One supersampled column of the ideal canvas: what its ray crosses (panels, nearest first;
+// ceiling lights as spans of depth) and the rows where the grey level changes, so the
+// column is filled as a few constant runs. Depth t is along the optical axis (the ray's
+// direction has unit depth); a row at normalised y sees height h - y t at depth t.
+class CanvasColumn {
+ public:
+  CanvasColumn(const World& world, double camera_height_in)
+      : cam_h_(camera_height_in),
+        ceiling_(world.ceiling_height_in),
+        floor_value_(static_cast<float>(world.floor_intensity)),
+        ceiling_value_(static_cast<float>(world.ceiling_intensity)),
+        reflectance_(static_cast<float>(world.floor_reflectance)) {}
 
-void CameraRenderer::RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Mat* canvas_t) const {
-  const int ss = options_.supersample;
-  const int cols = canvas_w_ * ss;
-  const int rows = canvas_h_;
-  // Transposed: one contiguous line of `rows` values per supersampled image column.
-  canvas_t->create(cols, rows, CV_32F);
-
-  const World& world = scene.world();
-  const std::vector<Panel>& panels = scene.panels();
-  const Eigen::Vector2d origin = X_WC.position();
-  const Eigen::Vector2d a{std::cos(X_WC.theta_rad), std::sin(X_WC.theta_rad)};
-  const Eigen::Vector2d r{a.y(), -a.x()};
-  const double cam_h = model_.height_in;
-  const double ceiling = world.ceiling_height_in;
-  const std::vector<int> near = scene.PanelsNear(origin, a, options_.max_range_in);
-  const float floor_value = static_cast<float>(world.floor_intensity);
-  const float ceiling_value = static_cast<float>(world.ceiling_intensity);
-  const float reflectance = static_cast<float>(world.floor_reflectance);
-  std::vector<const CeilingLight*> lights;
-  for (const CeilingLight& l : world.ceiling_lights) {
-    const double reach = options_.max_range_in + 0.5 * (l.length_in + l.width_in);
-    if ((l.center_in - origin).norm() <= reach) lights.push_back(&l);
+  // Collects the crossings and light spans of the ray origin + t dir.
+  void Cast(const Scene& scene, const Eigen::Vector2d& origin, const Eigen::Vector2d& dir,
+            double max_range_in, const std::vector<int>& near,
+            const std::vector<const CeilingLight*>& lights) {
+    scene.CastAll(origin, dir, max_range_in, &crossings_, &near);
+    hits_.clear();
+    breaks_.clear();
+    spans_.clear();
+    // Visible crossings, cut after the first panel that spans floor to ceiling.
+    for (const Scene::Crossing& c : crossings_) {
+      const Panel& p = scene.panels()[c.panel_index];
+      const double shade = kAmbientShare + (1.0 - kAmbientShare) * c.cos_incidence;
+      hits_.push_back({c.t, p.bottom_in, p.top_in, static_cast<float>(p.intensity * shade)});
+      // Rows where this crossing's floor, ceiling, bottom or top edge is seen, directly or
+      // in the floor.
+      for (double z : {0.0, ceiling_, p.bottom_in, p.top_in}) {
+        breaks_.push_back((cam_h_ - z) / c.t);
+        if (reflectance_ > 0.0f) breaks_.push_back((cam_h_ + z) / c.t);
+      }
+      if (p.bottom_in <= 0.0 && p.top_in >= ceiling_) break;
+    }
+    for (const CeilingLight* l : lights) {
+      double t0 = 0.0, t1 = 0.0;
+      if (!LightSpan(*l, origin, dir, &t0, &t1)) continue;
+      spans_.push_back({t0, t1, static_cast<float>(l->intensity)});
+      for (double t : {t0, t1}) {
+        if (t <= 0.0) continue;
+        breaks_.push_back(-(ceiling_ - cam_h_) / t);
+        if (reflectance_ > 0.0f) breaks_.push_back((ceiling_ + cam_h_) / t);
+      }
+    }
+    breaks_.push_back(0.0);  // the horizon, where an empty column turns from ceiling to floor
+    std::sort(breaks_.begin(), breaks_.end());
   }
 
+  // Fills `rows` values; row i looks along y = y_min + (i + 0.5) / f.
+  void Fill(float* out, int rows, double y_min, double f_px) const {
+    auto row_of = [&](double y) { return (y - y_min) * f_px - 0.5; };
+    int i = 0;
+    for (size_t b = 0; b <= breaks_.size() && i < rows; ++b) {
+      // Rows up to and including the last one strictly before the next break.
+      int end = rows;
+      if (b < breaks_.size()) {
+        end = std::clamp(static_cast<int>(std::ceil(row_of(breaks_[b]))), 0, rows);
+      }
+      if (end <= i) continue;
+      std::fill(out + i, out + end, Shade(y_min + (i + 0.5) / f_px));
+      i = end;
+    }
+  }
+
+ private:
   struct Hit {
-    double t;
-    double bottom;
-    double top;
+    double t, bottom, top;
     float value;
   };
   struct Span {
     double t0, t1;
     float value;
   };
-  std::vector<Hit> hits;
-  std::vector<Span> light_spans;
-  std::vector<double> breaks;
-  std::vector<Scene::Crossing> crossings;
-  // Row i looks along normalised y = y_min + (i + 0.5) / f (downward). A surface point at
-  // depth t is seen at height z = h - y t.
-  auto row_of = [&](double y) { return (y - y_min_) * f_px_ - 0.5; };
+
+  float Shade(double y) const {
+    for (const Hit& hit : hits_) {
+      const double z = cam_h_ - y * hit.t;
+      if (z < 0.0) return FloorAt(y);
+      if (z > ceiling_) return CeilingAt((ceiling_ - cam_h_) / -y);
+      if (z >= hit.bottom && z <= hit.top) return hit.value;
+    }
+    return y > 0.0 ? FloorAt(y) : CeilingAt((ceiling_ - cam_h_) / -y);
+  }
   // The ceiling point at depth t: a light or the plain ceiling.
-  auto ceiling_at = [&](double t) {
-    for (const Span& sp : light_spans) {
+  float CeilingAt(double t) const {
+    for (const Span& sp : spans_) {
       if (t >= sp.t0 && t <= sp.t1) return sp.value;
     }
-    return ceiling_value;
-  };
+    return ceiling_value_;
+  }
+  float FloorAt(double y) const {
+    if (reflectance_ <= 0.0f || y <= 0.0) return floor_value_;
+    return (1.0f - reflectance_) * floor_value_ + reflectance_ * Mirrored(y);
+  }
   // What the ray seen in a glossy floor at row y (> 0) meets: the mirrored height at depth
   // t beyond the floor point is y t - h.
-  auto mirrored = [&](double y) {
-    const double t_floor = cam_h / y;
-    for (const Hit& hit : hits) {
+  float Mirrored(double y) const {
+    const double t_floor = cam_h_ / y;
+    for (const Hit& hit : hits_) {
       if (hit.t <= t_floor) continue;
-      const double z = y * hit.t - cam_h;
-      if (z > ceiling) break;
+      const double z = y * hit.t - cam_h_;
+      if (z > ceiling_) break;
       if (z >= hit.bottom && z <= hit.top) return hit.value;
     }
-    return ceiling_at((ceiling + cam_h) / y);
-  };
-  auto floor_at = [&](double y) {
-    if (reflectance <= 0.0f || y <= 0.0) return floor_value;
-    return (1.0f - reflectance) * floor_value + reflectance * mirrored(y);
-  };
-  auto shade_row = [&](double y) {
-    for (const Hit& hit : hits) {
-      const double z = cam_h - y * hit.t;
-      if (z < 0.0) return floor_at(y);
-      if (z > ceiling) return ceiling_at((ceiling - cam_h) / -y);
-      if (z >= hit.bottom && z <= hit.top) return hit.value;
-    }
-    return y > 0.0 ? floor_at(y) : ceiling_at((ceiling - cam_h) / -y);
-  };
+    return CeilingAt((ceiling_ + cam_h_) / y);
+  }
 
+  double cam_h_, ceiling_;
+  float floor_value_, ceiling_value_, reflectance_;
+  std::vector<Scene::Crossing> crossings_;
+  std::vector<Hit> hits_;
+  std::vector<Span> spans_;
+  std::vector<double> breaks_;
+};
+
+}  // namespace
+
+void CameraRenderer::RenderCanvas(const Scene& scene, const Pose2d& X_WC, cv::Mat* canvas_t) const {
+  const int ss = options_.supersample;
+  const int cols = canvas_w_ * ss;
+  // Transposed: one contiguous line of canvas_h_ values per supersampled image column.
+  canvas_t->create(cols, canvas_h_, CV_32F);
+  const Eigen::Vector2d origin = X_WC.position();
+  const Eigen::Vector2d a{std::cos(X_WC.theta_rad), std::sin(X_WC.theta_rad)};
+  const Eigen::Vector2d r{a.y(), -a.x()};
+  const std::vector<int> near = scene.PanelsNear(origin, a, options_.max_range_in);
+  std::vector<const CeilingLight*> lights;
+  for (const CeilingLight& l : scene.world().ceiling_lights) {
+    const double reach = options_.max_range_in + 0.5 * (l.length_in + l.width_in);
+    if ((l.center_in - origin).norm() <= reach) lights.push_back(&l);
+  }
+  CanvasColumn column(scene.world(), model_.height_in);
   for (int j = 0; j < cols; ++j) {
     const double x = x_min_ + (j + 0.5) / (f_px_ * ss);
-    const Eigen::Vector2d dir = a + x * r;  // unit depth along the optical axis
-    scene.CastAll(origin, dir, options_.max_range_in, &crossings, &near);
-    // Visible crossings, nearest first, cut after the first panel that spans floor to
-    // ceiling (nothing behind it shows).
-    hits.clear();
-    breaks.clear();
-    light_spans.clear();
-    for (const Scene::Crossing& c : crossings) {
-      const Panel& p = panels[c.panel_index];
-      const double shade = kAmbientShare + (1.0 - kAmbientShare) * c.cos_incidence;
-      hits.push_back({c.t, p.bottom_in, p.top_in, static_cast<float>(p.intensity * shade)});
-      // Rows where this crossing's floor, ceiling, bottom or top edge is seen, directly or
-      // in the floor: the colour of the column is constant between consecutive breaks.
-      for (double z : {0.0, ceiling, p.bottom_in, p.top_in}) {
-        breaks.push_back((cam_h - z) / c.t);
-        if (reflectance > 0.0f) breaks.push_back((cam_h + z) / c.t);
-      }
-      if (p.bottom_in <= 0.0 && p.top_in >= ceiling) break;
-    }
-    for (const CeilingLight* l : lights) {
-      double t0 = 0.0, t1 = 0.0;
-      if (!LightSpan(*l, origin, dir, &t0, &t1)) continue;
-      light_spans.push_back({t0, t1, static_cast<float>(l->intensity)});
-      for (double t : {t0, t1}) {
-        if (t <= 0.0) continue;
-        breaks.push_back(-(ceiling - cam_h) / t);
-        if (reflectance > 0.0f) breaks.push_back((ceiling + cam_h) / t);
-      }
-    }
-    breaks.push_back(0.0);  // the horizon, where an empty column turns from ceiling to floor
-    std::sort(breaks.begin(), breaks.end());
-    float* out = canvas_t->ptr<float>(j);
-    int i = 0;
-    for (size_t b = 0; b <= breaks.size() && i < rows; ++b) {
-      // Rows up to and including the last one strictly before the next break.
-      int end = rows;
-      if (b < breaks.size()) {
-        end = std::clamp(static_cast<int>(std::ceil(row_of(breaks[b]))), 0, rows);
-      }
-      if (end <= i) continue;
-      const float value = shade_row(y_min_ + (i + 0.5) / f_px_);
-      std::fill(out + i, out + end, value);
-      i = end;
-    }
+    column.Cast(scene, origin, a + x * r, options_.max_range_in, near, lights);
+    column.Fill(canvas_t->ptr<float>(j), canvas_h_, y_min_, f_px_);
   }
 }
 

@@ -158,10 +158,46 @@ cv::Mat DrawDetections(const cv::Mat& image, const vision::RibbonDetection& det,
   return out;
 }
 
-std::string RunOnImages(const ImageRunConfig& config, const sensing::RobotConfig& robot) {
-  std::map<std::string, std::vector<std::pair<double, double>>> truth;
-  if (!config.annotations.empty()) truth = LoadAnnotations(config.annotations);
-  const vision::RibbonDetector detector;
+namespace {
+
+// The annotated frames' tally.
+struct ImageTally {
+  long annotated = 0, with_pairs = 0, top_hits = 0;
+  long door_frames = 0, door_top = 0, door_top3 = 0, empty_frames = 0, empty_with_pairs = 0;
+
+  // Adds one annotated frame; returns its verdict line.
+  std::string Add(const Scored& sc, bool door_free) {
+    ++annotated;
+    with_pairs += sc.pairs > 0;
+    top_hits += sc.top_hit == 0;
+    if (door_free) {
+      ++empty_frames;
+      empty_with_pairs += sc.pairs > 0;
+      return sc.pairs > 0 ? "  annotated: no door (pairs offered)\n" : "  annotated: no door\n";
+    }
+    ++door_frames;
+    door_top += sc.top_hit == 0;
+    door_top3 += sc.top_hit >= 0;
+    return sc.top_hit < 0 ? std::string("  annotated door: not among the first three\n")
+                          : Fmt("  annotated door: pair %.0f\n", sc.top_hit);
+  }
+
+  std::string Summary() const {
+    if (annotated == 0) return "";
+    const auto pct = [](long a, long b) { return b > 0 ? 100.0 * a / b : 0.0; };
+    std::string s = Fmt(
+        "annotated frames %.0f: precision of the first pair %.1f %% (%.0f of %.0f with pairs)\n",
+        annotated, pct(top_hits, with_pairs), top_hits, with_pairs);
+    s += Fmt("  recall: first pair %.1f %%, first three %.1f %% of %.0f door frames\n",
+             pct(door_top, door_frames), pct(door_top3, door_frames), door_frames);
+    s += Fmt("  door-free frames with pairs: %.0f of %.0f\n", empty_with_pairs, empty_frames);
+    return s;
+  }
+};
+
+// The width gate without a sonar: the configured range and stares, every legal class.
+vision::PairWidthLimits GateWithoutSonar(const ImageRunConfig& config,
+                                         const sensing::RobotConfig& robot) {
   landmark::WidthGate gate;
   gate.stare_tolerance_deg = config.max_stare_deg;
   gate.range_tolerance = config.range_tolerance;
@@ -170,53 +206,48 @@ std::string RunOnImages(const ImageRunConfig& config, const sensing::RobotConfig
     min_class = std::min(min_class, b.low_in);
     max_class = std::max(max_class, b.high_in);
   }
-  const sensing::CameraModel camera = sensing::CameraModel::FromConfig(robot.camera);
-  const vision::PairWidthLimits limits = landmark::LegalPairWidths(
-      camera, config.range_in, 0.0, min_class, max_class + 2.0 * gate.casing_allowance_in, gate);
+  return landmark::LegalPairWidths(sensing::CameraModel::FromConfig(robot.camera),
+                                   config.range_in, 0.0, min_class,
+                                   max_class + 2.0 * gate.casing_allowance_in, gate);
+}
+
+// The frame's detection and its first `top` candidates.
+std::string DescribeFrame(const std::string& path, const vision::RibbonDetection& det,
+                          const std::vector<sensing::JambCandidate>& ranked, int top) {
+  std::string s = path + Fmt(": threshold %.1f, %.0f footprints, %.0f pairs", det.threshold,
+                             det.footprints.size(), ranked.size());
+  s += det.ground >= 0.0 ? Fmt(", wall level %.0f\n", det.ground) : "\n";
+  for (int k = 0; k < top && k < static_cast<int>(ranked.size()); ++k) {
+    const sensing::JambCandidate& c = ranked[k];
+    s += Fmt("  %.0f  LJ %7.1f  RJ %7.1f  width %6.1f px", k, c.footprints.lj_px,
+             c.footprints.rj_px, c.footprints.rj_px - c.footprints.lj_px);
+    s += Fmt("  confidence %.3f\n", c.confidence);
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string RunOnImages(const ImageRunConfig& config, const sensing::RobotConfig& robot) {
+  std::map<std::string, std::vector<std::pair<double, double>>> truth;
+  if (!config.annotations.empty()) truth = LoadAnnotations(config.annotations);
+  const vision::RibbonDetector detector;
+  const vision::PairWidthLimits limits = GateWithoutSonar(config, robot);
   std::string s = Fmt("range %.0f in; stares within %.0f deg; pair widths %.1f..%.1f px\n",
                       config.range_in, config.max_stare_deg, limits.min_px, limits.max_px);
-  long annotated = 0, with_pairs = 0, top_hits = 0, door_frames = 0, door_top = 0, door_top3 = 0;
-  long empty_frames = 0, empty_with_pairs = 0;
+  ImageTally tally;
   for (const std::string& path : config.files) {
     int source_width = kFrameWidth;
     const cv::Mat frame = LoadFrame(path, &source_width);
     const vision::DetectResult r = detector.Detect(frame, config.range_in, limits);
     const std::vector<sensing::JambCandidate> ranked = Ranked(r.detection);
+    s += DescribeFrame(path, r.detection, ranked, config.top);
     std::vector<std::pair<double, double>> doors;
     const auto t = truth.find(BaseName(path));
-    const bool has_truth = t != truth.end();
-    if (has_truth) {
+    if (t != truth.end()) {
       const double scale = static_cast<double>(kFrameWidth) / source_width;
       for (const auto& [l, rr] : t->second) doors.push_back({l * scale, rr * scale});
-    }
-    s += path + Fmt(": threshold %.1f, %.0f footprints, %.0f pairs", r.detection.threshold,
-                    r.detection.footprints.size(), ranked.size());
-    s += r.detection.ground >= 0.0 ? Fmt(", wall level %.0f\n", r.detection.ground) : "\n";
-    for (int k = 0; k < config.top && k < static_cast<int>(ranked.size()); ++k) {
-      const sensing::JambCandidate& c = ranked[k];
-      s += Fmt("  %.0f  LJ %7.1f  RJ %7.1f  width %6.1f px", k, c.footprints.lj_px,
-               c.footprints.rj_px, c.footprints.rj_px - c.footprints.lj_px);
-      s += Fmt("  confidence %.3f\n", c.confidence);
-    }
-    if (has_truth) {
-      const Scored sc = Score(ranked, doors, config.hit_tolerance_px);
-      ++annotated;
-      with_pairs += sc.pairs > 0;
-      top_hits += sc.top_hit == 0;
-      if (doors.empty()) {
-        ++empty_frames;
-        empty_with_pairs += sc.pairs > 0;
-      } else {
-        ++door_frames;
-        door_top += sc.top_hit == 0;
-        door_top3 += sc.top_hit >= 0;
-      }
-      if (doors.empty()) {
-        s += sc.pairs > 0 ? "  annotated: no door (pairs offered)\n" : "  annotated: no door\n";
-      } else {
-        s += sc.top_hit < 0 ? std::string("  annotated door: not among the first three\n")
-                            : Fmt("  annotated door: pair %.0f\n", sc.top_hit);
-      }
+      s += tally.Add(Score(ranked, doors, config.hit_tolerance_px), doors.empty());
     }
     if (!config.draw_dir.empty()) {
       const std::string out = config.draw_dir + "/" + BaseName(path) + ".png";
@@ -225,15 +256,7 @@ std::string RunOnImages(const ImageRunConfig& config, const sensing::RobotConfig
       }
     }
   }
-  if (annotated > 0) {
-    const auto pct = [](long a, long b) { return b > 0 ? 100.0 * a / b : 0.0; };
-    s += Fmt("annotated frames %.0f: precision of the first pair %.1f %% (%.0f of %.0f with pairs)\n",
-             annotated, pct(top_hits, with_pairs), top_hits, with_pairs);
-    s += Fmt("  recall: first pair %.1f %%, first three %.1f %% of %.0f door frames\n",
-             pct(door_top, door_frames), pct(door_top3, door_frames), door_frames);
-    s += Fmt("  door-free frames with pairs: %.0f of %.0f\n", empty_with_pairs, empty_frames);
-  }
-  return s;
+  return s + tally.Summary();
 }
 
 }  // namespace stickrep::measure
