@@ -467,6 +467,31 @@ void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
   }
 }
 
+// The head band (every few rows between head_low_in and header_height_in) and the foot
+// rows near the floor at the coaxial range, where the image shows them (the appearance
+// rule's head and foot tests).
+void AppearanceBands(const std::uint8_t* data, int width, int height, std::size_t step,
+                     const std::vector<int>& rows, double range_in,
+                     const RibbonDetectorParams& params, std::vector<RowProfile>* head_band,
+                     std::unique_ptr<RowProfile>* foot) {
+  auto row_of = [&](double height_in) {
+    return static_cast<int>(std::lround(
+        (height - 1) / 2.0 - params.focal_px * (height_in - params.camera_height_in) / range_in));
+  };
+  constexpr int kHeadStepPx = 4;
+  const int top = row_of(params.header_height_in);
+  const int bottom = std::min(row_of(params.head_low_in), rows.front() - 4);
+  if (top >= 1) {
+    for (int r = top; r <= bottom; r += kHeadStepPx) {
+      head_band->emplace_back(data, width, step, std::vector<int>{r});
+    }
+  }
+  const int f = row_of(params.foot_height_in);
+  if (f >= 1 && f <= height - 2 && f > rows.back() + 8) {
+    *foot = std::make_unique<RowProfile>(data, width, step, std::vector<int>{f - 1, f, f + 1});
+  }
+}
+
 }  // namespace
 
 const char* ToString(DetectStatus status) {
@@ -641,28 +666,11 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   }
   det.width_limits = limits;
   const RowProfile profile(data, width, step, det.rows);
-  // The head band (every few rows between head_low_in and header_height_in) and the foot
-  // rows near the floor at the coaxial range, where the image shows them.
   std::vector<RowProfile> head_band;
   std::unique_ptr<RowProfile> foot;
   if (five_rows && params_.appearance_rule) {
-    auto row_of = [&](double height_in) {
-      return static_cast<int>(std::lround(
-          (height - 1) / 2.0 -
-          params_.focal_px * (height_in - params_.camera_height_in) / coaxial_range_in));
-    };
-    constexpr int kHeadStepPx = 4;
-    const int top = row_of(params_.header_height_in);
-    const int bottom = std::min(row_of(params_.head_low_in), det.rows.front() - 4);
-    if (top >= 1) {
-      for (int r = top; r <= bottom; r += kHeadStepPx) {
-        head_band.emplace_back(data, width, step, std::vector<int>{r});
-      }
-    }
-    const int f = row_of(params_.foot_height_in);
-    if (f >= 1 && f <= height - 2 && f > det.rows.back() + 8) {
-      foot = std::make_unique<RowProfile>(data, width, step, std::vector<int>{f - 1, f, f + 1});
-    }
+    AppearanceBands(data, width, height, step, det.rows, coaxial_range_in, params_, &head_band,
+                    &foot);
   }
   PairFootprints(det.footprints, n_rows, params_, profile, head_band, foot.get(), &det);
   return result;
