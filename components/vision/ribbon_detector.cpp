@@ -318,19 +318,58 @@ double GroundLevel(const RowProfile& profile, const std::vector<Footprint>& foot
   return 0.5 * (l + r);
 }
 
-// The appearance rule's readings for a pair, and its factor on the confidence.
-double Appearance(const RowProfile& profile, double ground, const RibbonDetectorParams& params,
-                  CandidatePair* pair) {
+// Where the appearance rule reads a pair (columns): its interior, the near flanks just
+// outside each edge (up to the next footprint outside, so a narrow casing is its own flank)
+// and the far flanks beyond them (past that footprint, or past a casing's width).
+struct PairBands {
+  double interior_lo, interior_hi;
+  double near_l_lo, near_l_hi, near_r_lo, near_r_hi;
+  double far_l_lo, far_l_hi, far_r_lo, far_r_hi;
+};
+
+PairBands Bands(const CandidatePair& pair, const std::vector<Footprint>& footprints) {
   constexpr double kEdgeGapPx = 2.0;  // the edge's own blur
-  const double lj = pair->left_px, rj = pair->right_px, w = pair->width_px;
+  const double lj = pair.left_px, rj = pair.right_px, w = pair.width_px;
   const double near = std::clamp(0.15 * w, 3.0, 12.0);
   const double far = std::clamp(0.35 * w, 4.0, 40.0);
   const double inset = std::min(kEdgeGapPx, 0.25 * w);
-  pair->interior = profile.Mean(lj + inset, rj - inset);
-  pair->left_flank = profile.Mean(lj - kEdgeGapPx - near, lj - kEdgeGapPx);
-  pair->right_flank = profile.Mean(rj + kEdgeGapPx, rj + kEdgeGapPx + near);
-  const double far_l = profile.Mean(lj - kEdgeGapPx - near - far, lj - kEdgeGapPx - near);
-  const double far_r = profile.Mean(rj + kEdgeGapPx + near, rj + kEdgeGapPx + near + far);
+  PairBands b;
+  b.interior_lo = lj + inset;
+  b.interior_hi = rj - inset;
+  b.near_l_hi = lj - kEdgeGapPx;
+  b.near_l_lo = lj - kEdgeGapPx - near;
+  b.far_l_hi = b.near_l_lo;
+  if (pair.left_index > 0) {
+    const double prev = footprints[pair.left_index - 1].column_px;
+    if (prev + kEdgeGapPx > b.near_l_lo) {
+      b.near_l_lo = std::min(prev + kEdgeGapPx, b.near_l_hi - 1.0);
+      b.far_l_hi = prev - kEdgeGapPx;
+    }
+  }
+  b.far_l_lo = b.far_l_hi - far;
+  b.near_r_lo = rj + kEdgeGapPx;
+  b.near_r_hi = rj + kEdgeGapPx + near;
+  b.far_r_lo = b.near_r_hi;
+  if (pair.right_index + 1 < static_cast<int>(footprints.size())) {
+    const double next = footprints[pair.right_index + 1].column_px;
+    if (next - kEdgeGapPx < b.near_r_hi) {
+      b.near_r_hi = std::max(next - kEdgeGapPx, b.near_r_lo + 1.0);
+      b.far_r_lo = next + kEdgeGapPx;
+    }
+  }
+  b.far_r_hi = b.far_r_lo + far;
+  return b;
+}
+
+// The appearance rule's readings for a pair, and its factor on the confidence.
+double Appearance(const RowProfile& profile, const std::vector<Footprint>& footprints,
+                  double ground, const RibbonDetectorParams& params, CandidatePair* pair) {
+  const PairBands b = Bands(*pair, footprints);
+  pair->interior = profile.Mean(b.interior_lo, b.interior_hi);
+  pair->left_flank = profile.Mean(b.near_l_lo, b.near_l_hi);
+  pair->right_flank = profile.Mean(b.near_r_lo, b.near_r_hi);
+  const double far_l = profile.Mean(b.far_l_lo, b.far_l_hi);
+  const double far_r = profile.Mean(b.far_r_lo, b.far_r_hi);
   pair->far_flank = std::isnan(far_l) ? far_r : std::isnan(far_r) ? far_l : 0.5 * (far_l + far_r);
   double factor = 0.5;
   const double dl = pair->interior - pair->left_flank;
@@ -379,14 +418,13 @@ bool SpansTwoFaces(const RowProfile& profile, const std::vector<Footprint>& foot
 
 // Whether the pair's face still contrasts with both flanks by min_contrast at the rows of
 // `rows` (the foot rows, RibbonDetectorParams), with the sign it has in the processed rows.
-bool FaceContinuesAt(const RowProfile* rows, const CandidatePair& pair, double min_contrast) {
+bool FaceContinuesAt(const RowProfile* rows, const std::vector<Footprint>& footprints,
+                     const CandidatePair& pair, double min_contrast) {
   if (rows == nullptr) return false;
-  constexpr double kEdgeGapPx = 2.0;
-  const double near = std::clamp(0.15 * pair.width_px, 3.0, 12.0);
-  const double inset = std::min(kEdgeGapPx, 0.25 * pair.width_px);
-  const double i = rows->Mean(pair.left_px + inset, pair.right_px - inset);
-  const double l = rows->Mean(pair.left_px - kEdgeGapPx - near, pair.left_px - kEdgeGapPx);
-  const double r = rows->Mean(pair.right_px + kEdgeGapPx, pair.right_px + kEdgeGapPx + near);
+  const PairBands b = Bands(pair, footprints);
+  const double i = rows->Mean(b.interior_lo, b.interior_hi);
+  const double l = rows->Mean(b.near_l_lo, b.near_l_hi);
+  const double r = rows->Mean(b.near_r_lo, b.near_r_hi);
   const double sign = pair.interior - 0.5 * (pair.left_flank + pair.right_flank);
   if (std::isnan(i) || std::isnan(l) || std::isnan(r) || std::isnan(sign)) return false;
   const double dl = i - l, dr = i - r;
@@ -447,12 +485,13 @@ void PairFootprints(const std::vector<Footprint>& footprints, int n_rows,
       pair.right_index = j;
       pair.confidence = PairConfidence(l, r, n_rows, params);
       if (appearance) {
-        pair.confidence *= Appearance(profile, det->ground, params, &pair);
+        pair.confidence *= Appearance(profile, footprints, det->ground, params, &pair);
         pair.two_faces = SpansTwoFaces(profile, footprints, n_rows, pair);
         if (pair.two_faces) pair.confidence *= params.two_faces_factor;
         pair.tall_face = NoHead(head_band, pair, params.min_tall_contrast);
         if (pair.tall_face) pair.confidence *= params.tall_face_factor;
-        pair.short_face = foot != nullptr && !FaceContinuesAt(foot, pair, params.min_foot_contrast);
+        pair.short_face =
+            foot != nullptr && !FaceContinuesAt(foot, footprints, pair, params.min_foot_contrast);
         if (pair.short_face) pair.confidence *= params.short_face_factor;
       }
       pairs->push_back(pair);

@@ -34,7 +34,7 @@ std::vector<Sample> Samples() {
   return {
       {"clean", [](O*) {}, 168.0, 72.0, 0.0},
       {"floor_reflections", [](O* o) { o->floor_reflections = true; }, 168.0, 108.0, 0.0},
-      {"ceiling_lights", [](O* o) { o->ceiling_lights = true; }, 168.0, 108.0, 0.0},
+      {"ceiling_lights", [](O* o) { o->ceiling_lights = true; }, 168.0, 200.0, 0.0},
       {"notice_boards",
        [](O* o) {
          o->notice_boards = true;
