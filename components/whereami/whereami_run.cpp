@@ -353,14 +353,18 @@ void Run::OnRecovery(const Recovery& r) {
   }
 }
 
-// Keeps the robot travelling until the kidnap: a goal half the ring ahead.
+// Keeps the robot travelling until the kidnap: a goal a third of a closed ring ahead (the
+// way on is then the shorter one, so the route does not reverse the robot), or the far end
+// of an open one (a goal past an open ring's end would be a few edges behind the robot).
 void Run::SendGoalAhead(const Recovery& r) {
-  const int n = map_.ring(ring_).EdgeCount();
-  const int ahead = r.forward ? r.edge + n / 2 : r.edge - n / 2 + n;
+  const map::Ring& ring = map_.ring(ring_);
+  const int n = ring.EdgeCount();
+  const int ahead = ring.closed ? (r.forward ? r.edge + n / 3 : r.edge - n / 3 + n) % n
+                                : (r.edge < n / 2 ? n - 1 : 0);
   message::MissionGoal goal;
   goal.header.stamp_ns = stack_.executor().NowNs();
   goal.goal_id = "far";
-  goal.target = fmt::format("{}/{}", r.ring_id, ahead % n);
+  goal.target = fmt::format("{}/{}", r.ring_id, ahead);
   goals_.Publish(goal);
 }
 
