@@ -17,6 +17,7 @@
 
 #include "runtime/discovery.h"
 #include "runtime/qos_catalog.h"
+#include "runtime/security.h"
 
 namespace stickrep::runtime {
 
@@ -41,6 +42,8 @@ struct ParticipantConfig {
   // shared-memory port held every writing process up for seconds, where a full UDP socket
   // only loses that observer's samples. A profile that names its own transports keeps them.
   bool shared_memory = true;
+  // DDS Security (authentication, access control, encryption); off when its dir is empty.
+  SecurityConfig security;
 };
 
 // Checks that a Fast DDS XML profile file exists and is well-formed XML; throws InputError
