@@ -152,7 +152,6 @@ dds::DomainParticipantQos Participant::LoadQos() {
                        "no participant profile with this name in the XML file");
     }
   }
-  if (config_.security.enabled()) ApplySecurity(config_.security, pqos);
   auto& transport = pqos.transport();
   if (!config_.shared_memory && transport.use_builtin_transports) {
     transport.use_builtin_transports = false;
@@ -180,12 +179,23 @@ dds::DomainParticipantQos Participant::LoadQos() {
   using Protocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t;
   if (discovery.discoveryProtocol == Protocol::CLIENT ||
       discovery.discoveryProtocol == Protocol::SUPER_CLIENT) {
+    if (config_.security.enabled()) {
+      // A secured server's GUID prefix comes from its certificate.
+      for (auto& server : discovery.m_DiscoveryServers) {
+        server.guidPrefix = SecuredServerPrefix(config_.security, server.guidPrefix);
+      }
+    }
     std::vector<std::string> prefixes;
     for (const auto& server : discovery.m_DiscoveryServers) {
       prefixes.push_back(PrefixText(server.guidPrefix));
     }
     discovery_.SetServers(prefixes);
     servers_text_ = LocatorsText(discovery.m_DiscoveryServers);
+  }
+  if (config_.security.enabled()) {
+    const bool simple = discovery.discoveryProtocol == Protocol::SIMPLE;
+    ApplySecurity(config_.security, pqos,
+                  simple ? DiscoveryKind::kSimple : DiscoveryKind::kDiscoveryServer);
   }
   return pqos;
 }

@@ -43,7 +43,7 @@ struct ParticipantConfig {
   // only loses that observer's samples. A profile that names its own transports keeps them.
   bool shared_memory = true;
   // DDS Security (authentication, access control, encryption); off when its dir is empty.
-  SecurityConfig security;
+  SecurityConfig security = {};
 };
 
 // Checks that a Fast DDS XML profile file exists and is well-formed XML; throws InputError

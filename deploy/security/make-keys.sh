@@ -6,6 +6,9 @@
 #   DIR/identity_ca.cert.pem       the identity CA every participant trusts
 #   DIR/permissions_ca.cert.pem    the permissions CA that signs governance and permissions
 #   DIR/governance.p7s             the domain governance (governance.xml, S/MIME-signed)
+#   DIR/governance_discovery_server.p7s   the same for a deployment with a discovery server
+#                                  (endpoint discovery and liveliness not encrypted: Fast DDS
+#                                  2.9's server cannot relay them encrypted)
 #   DIR/NAME/cert.pem, key.pem     one ECDSA P-256 identity per process, the console, the
 #                                  discovery server and the transport bench
 #   DIR/NAME/permissions.p7s       what NAME may publish and subscribe (deny by default)
@@ -15,7 +18,7 @@
 #   deploy/security/make-keys.sh DIR [--days N]
 #
 # The policy (docs/security.md): no unauthenticated participant joins; discovery and
-# liveliness are encrypted; commands (robot/motion/command, device/base/wheel_command),
+# liveliness are encrypted (with simple discovery); commands (robot/motion/command, device/base/wheel_command),
 # goals (mission/goal) and camera frames (device/camera/frame, robot/camera/image) are
 # encrypted; every topic's readers and writers are access-controlled; only the executive and
 # the console may write mission/goal, only the executive robot/motion/command, only
@@ -111,12 +114,13 @@ new_ca identity_ca "StickRep identity CA"
 new_ca permissions_ca "StickRep permissions CA"
 
 # Governance: the first topic rule whose expression matches a topic applies.
-rule() {  # rule EXPRESSION METADATA_PROTECTION DATA_PROTECTION
+# rule EXPRESSION METADATA_PROTECTION DATA_PROTECTION DISCOVERY_AND_LIVELINESS_PROTECTED
+rule() {
   cat <<XML
         <topic_rule>
           <topic_expression>$1</topic_expression>
-          <enable_discovery_protection>true</enable_discovery_protection>
-          <enable_liveliness_protection>true</enable_liveliness_protection>
+          <enable_discovery_protection>$4</enable_discovery_protection>
+          <enable_liveliness_protection>$4</enable_liveliness_protection>
           <enable_read_access_control>true</enable_read_access_control>
           <enable_write_access_control>true</enable_write_access_control>
           <metadata_protection_kind>$2</metadata_protection_kind>
@@ -124,7 +128,13 @@ rule() {  # rule EXPRESSION METADATA_PROTECTION DATA_PROTECTION
         </topic_rule>
 XML
 }
-{
+# governance PROTECTED(true|false) > FILE: with PROTECTED, endpoint discovery and liveliness
+# go over the encrypted built-in endpoints. Fast DDS 2.9's discovery server cannot relay
+# those, so a deployment with a discovery server uses the other document: endpoints are then
+# announced in the clear, but only to authenticated participants.
+governance() {
+  local liveliness=NONE
+  [ "$1" = true ] && liveliness=ENCRYPT
   cat <<XML
 <?xml version="1.0" encoding="UTF-8"?>
 <dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
@@ -135,7 +145,7 @@ XML
       <allow_unauthenticated_participants>false</allow_unauthenticated_participants>
       <enable_join_access_control>true</enable_join_access_control>
       <discovery_protection_kind>ENCRYPT</discovery_protection_kind>
-      <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>
+      <liveliness_protection_kind>$liveliness</liveliness_protection_kind>
       <rtps_protection_kind>NONE</rtps_protection_kind>
       <topic_access_rules>
 XML
@@ -143,19 +153,22 @@ XML
   # bench's ping/pong topics are protected the same way, so that it measures their cost.
   for t in robot/motion/command device/base/wheel_command mission/goal device/camera/frame \
            robot/camera/image "bench/*"; do
-    rule "$t" SIGN ENCRYPT
+    rule "$t" SIGN ENCRYPT "$1"
   done
   # Every other topic: access-controlled and discovered only by authenticated peers, sent
   # in the clear (sensor streams, pose, status: no secret, and the cost would be paid at 20 Hz).
-  rule "*" NONE NONE
+  rule "*" NONE NONE "$1"
   cat <<XML
       </topic_access_rules>
     </domain_rule>
   </domain_access_rules>
 </dds>
 XML
-} > "$out/governance.xml"
+}
+governance true > "$out/governance.xml"
 sign "$out/governance.xml" "$out/governance.p7s"
+governance false > "$out/governance_discovery_server.xml"
+sign "$out/governance_discovery_server.xml" "$out/governance_discovery_server.p7s"
 
 # Who publishes and subscribes what (README's process table); system/status is every
 # process's heartbeat.
@@ -190,13 +203,16 @@ for name in virtual_robot sonar camera locomotion landmark localizer executive c
   permissions "$name" "${pub[$name]}" "${sub[$name]}"
 done
 
-# fast-discovery-server -x: the server's own identity (its -i, -l and -p come from the graph).
+# fast-discovery-server -x: the server's own identity (its -l and -p come from the graph).
+# With -x the tool takes the GUID prefix from the file: the one of server id 0, which the
+# clients (deploy/fastdds/discovery_client.xml, --discovery-server) expect.
 cat > "$out/discovery_server.xml" <<XML
 <?xml version="1.0" encoding="UTF-8"?>
 <dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
   <profiles>
     <participant profile_name="stickrep_secure_server" is_default_profile="true">
       <rtps>
+        <prefix>44.53.00.5f.45.50.52.4f.53.49.4d.41</prefix>
         <builtin>
           <discovery_config>
             <discoveryProtocol>SERVER</discoveryProtocol>
@@ -210,7 +226,7 @@ cat > "$out/discovery_server.xml" <<XML
             <property><name>dds.sec.auth.builtin.PKI-DH.private_key</name><value>file://$out/discovery_server/key.pem</value></property>
             <property><name>dds.sec.access.plugin</name><value>builtin.Access-Permissions</value></property>
             <property><name>dds.sec.access.builtin.Access-Permissions.permissions_ca</name><value>file://$out/permissions_ca.cert.pem</value></property>
-            <property><name>dds.sec.access.builtin.Access-Permissions.governance</name><value>file://$out/governance.p7s</value></property>
+            <property><name>dds.sec.access.builtin.Access-Permissions.governance</name><value>file://$out/governance_discovery_server.p7s</value></property>
             <property><name>dds.sec.access.builtin.Access-Permissions.permissions</name><value>file://$out/discovery_server/permissions.p7s</value></property>
             <property><name>dds.sec.crypto.plugin</name><value>builtin.AES-GCM-GMAC</value></property>
           </properties>
