@@ -24,6 +24,7 @@
 # the console may write mission/goal, only the executive robot/motion/command, only
 # locomotion device/base/wheel_command. Needs openssl. Exit code 2 for a bad command line.
 set -euo pipefail
+set -f  # topic expressions such as * are not file names
 
 usage() { echo "usage: $0 DIR [--days N]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
