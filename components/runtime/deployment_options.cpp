@@ -72,6 +72,18 @@ std::vector<std::string> SplitServerList(const std::string& text) {
   return out;
 }
 
+void WatchAuthentication(const Participant& participant, Executor& executor,
+                         std::shared_ptr<spdlog::logger> log) {
+  auto logged = std::make_shared<size_t>(0);
+  executor.AddTimer(1.0, [&participant, log, logged] {
+    const auto refused = participant.discovery().Refused();
+    for (; *logged < refused.size(); ++*logged) {
+      log->warn("DDS Security: participant {} failed authentication: ignored",
+                refused[*logged]);
+    }
+  });
+}
+
 void WatchDiscoveryServers(const Participant& participant, Executor& executor,
                            std::shared_ptr<spdlog::logger> log, double warn_period_s) {
   if (!participant.discovery().UsesServers()) return;

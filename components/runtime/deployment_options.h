@@ -50,4 +50,9 @@ std::vector<std::string> SplitServerList(const std::string& text);
 void WatchDiscoveryServers(const Participant& participant, Executor& executor,
                            std::shared_ptr<spdlog::logger> log, double warn_period_s = 10.0);
 
+// For a secured participant: logs each remote participant whose authentication failed (an
+// outsider, or a peer with a certificate of another CA), checked every second.
+void WatchAuthentication(const Participant& participant, Executor& executor,
+                         std::shared_ptr<spdlog::logger> log);
+
 }  // namespace stickrep::runtime

@@ -66,6 +66,8 @@ class Participant {
   const QosCatalog& catalog() const { return catalog_; }
   const std::string& name() const { return config_.name; }
   int domain_id() const { return config_.domain_id; }
+  // The DDS Security identity it authenticates as; "" when not secured.
+  const std::string& security_identity() const { return config_.security.identity; }
   eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
   // What discovery has found: remote participants, writers and readers, servers reached.
   const DiscoveryListener& discovery() const { return discovery_; }
