@@ -11,6 +11,8 @@
 #include "common/input_error.h"
 #include "common/tool_main.h"
 #include "measure_tool/error_measurement.h"
+#include "measure_tool/real_images.h"
+#include "measure_tool/sample_frames.h"
 #include "sensing/robot_config.h"
 #include "common/config_paths.h"
 #include "stickrep/map_io.h"
@@ -63,9 +65,58 @@ int main(int argc, char** argv) {
                "Short Side sides along the FOV edges instead of the printed 30 deg rays");
   app.add_flag("--no-casing-rule", no_casing_rule,
                "classify the detector's pairs as they come (shows the casing problem)");
+  bool realism = false, before = false;
+  app.add_flag("--realism", realism,
+               "cluttered, real-looking hallways: every world::RealismOptions feature on");
+  app.add_flag("--detector-before", before,
+               "the detector and pipeline as before issue 17 (for before/after figures)");
+  app.add_option("--min-confidence", config.estimator.min_confidence,
+                 "candidates below this detector confidence are not classified (4.1.2)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--outside-stare-deg", config.outside_stare_deg,
+                 "largest stare of the frames outside the envelope (oblique views)")
+      ->check(CLI::Range(7.5, 45.0))
+      ->capture_default_str();
+
+  // stickrep-measure images FILE...: the detector on real frames.
+  measure::ImageRunConfig images;
+  CLI::App* images_cmd = app.add_subcommand(
+      "images", "run the detector on image files (any size, made 512 x 480 mono8)");
+  images_cmd->add_option("files", images.files, "PNG or JPEG files")->required();
+  images_cmd->add_option("--range-in", images.range_in, "coaxial range (§4.1.1: six feet)")
+      ->check(CLI::Range(12.0, 420.0))
+      ->capture_default_str();
+  images_cmd->add_option("--max-stare-deg", images.max_stare_deg,
+                         "stares admitted by the width gate")
+      ->check(CLI::Range(0.0, 55.0))
+      ->capture_default_str();
+  images_cmd->add_option("--annotations", images.annotations,
+                         "true jamb columns: lines 'NAME: LJ RJ ...' or 'NAME: -'");
+  images_cmd->add_option("--draw", images.draw_dir, "write each frame, detections drawn, here");
+  images_cmd->add_option("--top", images.top, "pairs printed per image")
+      ->check(CLI::Range(1, 32))
+      ->capture_default_str();
+  // stickrep-measure samples --out-dir DIR: one drawn frame per clutter class.
+  std::string samples_dir;
+  CLI::App* samples_cmd =
+      app.add_subcommand("samples", "write a drawn frame of each clutter class (docs/vision.md)");
+  samples_cmd->add_option("--out-dir", samples_dir, "folder for the PNGs")->required();
   if (const std::optional<int> rc = ParseCommandLine(app, argc, argv)) return *rc;
 
   try {
+    if (images_cmd->parsed() || samples_cmd->parsed()) {
+      const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(robot_path);
+      if (images_cmd->parsed()) {
+        std::cout << measure::RunOnImages(images, robot);
+      } else {
+        std::cout << "seed " << config.seed << "\n"
+                  << measure::WriteSampleFrames(samples_dir, robot, config.seed);
+      }
+      return 0;
+    }
+    if (realism) config.realism = world::FullRealism();
+    if (before) measure::UseDetectorBeforeIssue17(&config);
     if (fov_edges) config.estimator.short_side_edges = sensing::ShortSideEdges::kFieldOfViewEdges;
     config.casing.enabled = !no_casing_rule;
     const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(robot_path);

@@ -23,7 +23,16 @@ int main(int argc, char** argv) {
   app.add_option("--kidnap-after", o.kidnap_after_s,
                  "Kidnap the robot this long (s) after the pose is recovered; -1: never")
       ->check(CLI::Range(-1.0, 3600.0));
-  app.add_option("--kidnap-jump", o.kidnap_jump_in, "How far along the ring the kidnap moves it (in)");
+  auto* jump =
+      app.add_option("--kidnap-jump", o.kidnap_jump_in, "How far along the ring the kidnap moves it (in)");
+  app.add_flag("--kidnap-jump-random", o.kidnap_jump_random,
+               "Draw each run's kidnap jump from its seed over the middle 80 % of the ring")
+      ->excludes(jump);
+  app.add_option("--keep-going-ft", o.keep_going_ft,
+                 "Without a kidnap: keep travelling this far after the pose, watching it")
+      ->check(CLI::Range(0.0, 100000.0));
+  app.add_flag("--reliability", o.reliability,
+               "Print how often poses published with each confidence were right");
   app.add_option("--json", o.json_path, "Write every run as JSON");
   app.add_option("--ring", o.rings, "Ring(s) to start on (default: the virtual robot's)");
   app.add_option("--measure-ft", o.measure_ft,

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine for StickRep and builds it: installs the Debian packages that
-# are missing, configures, and builds into build/ (executables in build/bin): everything, or with
+# are missing, configures, and builds into build/ (executables in build/bin): everything (with
+# the fuzz targets in build/fuzz and the unit tests under ASan+UBSan in build/asan), or with
 # `main` only what the main job runs. Safe to run again: it installs nothing that is present
 # and rebuilds incrementally.
 set -euo pipefail
@@ -16,6 +17,7 @@ packages=(
   libsqlite3-dev                                              # recordings (components/bag)
   openssl libssl-dev                                          # DDS Security: make-keys.sh, runtime
   cyclonedds-dev cyclonedds-tools                             # the security test's outside peer
+  clang libclang-rt-14-dev                                    # the fuzz targets (libFuzzer)
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -30,8 +32,9 @@ if ((${#missing[@]})); then
 fi
 
 # Two cores: build with -j2. Generated IDL code is rebuilt only when an .idl file changes.
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.configure.log 2>&1 ||
-  { cat build.configure.log; exit 1; }
+# build/'s ctest also runs the sanitized unit suite of build/asan, once that is built.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSTICKREP_EXTRA_TEST_DIRS=asan \
+  > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 rm -f build.configure.log
 # `main`: only what the main job runs (the processes and stickrep-launch), for a first
 # result sooner; `all` (the default): everything, tests and benchmarks included.
@@ -42,3 +45,12 @@ case "${1:-all}" in
   *) echo "usage: bash deploy/setup.sh [main|all]" >&2; exit 2 ;;
 esac
 cmake --build build -j2 "${targets[@]}"
+[ "${1:-all}" = all ] || exit 0
+
+# The unit tests again under AddressSanitizer and UBSan, in build/asan (no benchmarks, no
+# multi-process tests): tests asan.*, label asan, run by build/'s ctest (docs/reliability.md).
+cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Release -DSTICKREP_SANITIZE=address,undefined \
+  -DSTICKREP_BUILD_BENCHMARKS=OFF -DSTICKREP_BUILD_INTEGRATION_TESTS=OFF \
+  -DSTICKREP_FUZZ_TESTS=OFF > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
+rm -f build.configure.log
+cmake --build build/asan -j2

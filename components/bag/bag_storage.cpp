@@ -23,6 +23,21 @@ struct Statement {
   ~Statement() { sqlite3_finalize(s); }
 };
 
+// Closes the database a constructor opened if the constructor throws: the destructor does
+// not run then, and the connection and its file would stay open.
+struct CloseOnThrow {
+  sqlite3*& db;
+  sqlite3_stmt*& statement;  // finalized first (closing fails while one is open)
+  bool constructed = false;
+  ~CloseOnThrow() {
+    if (constructed) return;
+    sqlite3_finalize(statement);
+    statement = nullptr;
+    sqlite3_close(db);
+    db = nullptr;
+  }
+};
+
 std::string Column(sqlite3_stmt* s, int i) {
   const auto* text = sqlite3_column_text(s, i);
   return text == nullptr ? "" : reinterpret_cast<const char*>(text);
@@ -32,6 +47,7 @@ std::string Column(sqlite3_stmt* s, int i) {
 
 BagWriter::BagWriter(const std::string& path, double batch_s) : path_(path), batch_s_(batch_s) {
   if (std::filesystem::exists(path)) Fail("exists already; a recording is never overwritten");
+  CloseOnThrow guard{db_, insert_};
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
       SQLITE_OK) {
     Fail("cannot be created");
@@ -45,6 +61,7 @@ BagWriter::BagWriter(const std::string& path, double batch_s) : path_(path), bat
                          -1, &insert_, nullptr) != SQLITE_OK) {
     Fail("cannot prepare the message insert");
   }
+  guard.constructed = true;
 }
 
 BagWriter::~BagWriter() {
@@ -154,6 +171,8 @@ void BagWriter::Flush() {
 
 BagReader::BagReader(const std::string& path) : path_(path) {
   if (!std::filesystem::is_regular_file(path)) Fail("no such recording");
+  sqlite3_stmt* no_statement = nullptr;
+  CloseOnThrow guard{db_, no_statement};
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
     Fail("cannot be opened");
   }
@@ -173,6 +192,7 @@ BagReader::BagReader(const std::string& path) : path_(path) {
                                 Column(s.s, 3), Column(s.s, 4)});
   }
   if (rc != SQLITE_DONE) Fail(std::string("damaged: ") + sqlite3_errmsg(db_));
+  guard.constructed = true;
 }
 
 BagReader::~BagReader() { sqlite3_close(db_); }

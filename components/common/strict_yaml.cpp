@@ -67,10 +67,19 @@ bool StrictYaml::Has(const std::string& key) const {
   return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
 }
 
+std::string StrictYaml::KeyText(const YAML::Node& key) const {
+  if (!key.IsScalar()) {
+    const int at = key.Mark().line >= 0 ? key.Mark().line + 1 : line();
+    throw InputError(file_, at, path_,
+                     "a key must be a plain word or number, not a mapping, a sequence or null");
+  }
+  return key.Scalar();
+}
+
 std::vector<std::string> StrictYaml::Keys() const {
   RequireMap();
   std::vector<std::string> keys;
-  for (const auto& kv : node_) keys.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) keys.push_back(KeyText(kv.first));
   return keys;
 }
 
@@ -109,7 +118,7 @@ std::vector<StrictYaml> StrictYaml::Elements() const {
 void StrictYaml::Finish() const {
   RequireMap();
   for (const auto& kv : node_) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = KeyText(kv.first);
     if (used_->count(key) == 0) {
       throw InputError(file_, kv.first.Mark().line + 1, ChildPath(key), "unknown key");
     }

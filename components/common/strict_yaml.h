@@ -81,6 +81,8 @@ class StrictYaml {
  private:
   StrictYaml(YAML::Node node, std::string file, std::string path);
   void RequireMap() const;
+  // A mapping key's text; throws InputError for a key that is not a scalar.
+  std::string KeyText(const YAML::Node& key) const;
   YAML::Node Lookup(const std::string& key) const;
   std::string ChildPath(const std::string& key) const;
   template <typename T>

@@ -120,6 +120,22 @@ TEST(StrictYamlTest, SequenceElementsCarryIndexedPaths) {
   EXPECT_EQ(e.key(), "rings[1].id");
 }
 
+// A mapping, a sequence or null as a key is refused with the key's line (yaml-cpp's own
+// conversion exception used to escape from Keys() and Finish(); found by fuzz_error_model).
+TEST(StrictYamlTest, KeyThatIsNotAScalarIsAnInputError) {
+  for (const char* text : {"m:\n  a: 1\n  {b: 2}: 3\n", "m:\n  a: 1\n  [b, c]: 3\n",
+                           "m:\n  a: 1\n  ~: 3\n"}) {
+    const StrictYaml m = StrictYaml::LoadString(text, "k.yaml").Child("m");
+    m.Get<int>("a");
+    const InputError finish = CatchInputError([&] { m.Finish(); });
+    EXPECT_EQ(finish.file(), "k.yaml") << text;
+    EXPECT_EQ(finish.line(), 3) << text;
+    EXPECT_THAT(finish.reason(), HasSubstr("a key must be a plain word or number")) << text;
+    const InputError keys = CatchInputError([&] { m.Keys(); });
+    EXPECT_EQ(keys.line(), 3) << text;
+  }
+}
+
 TEST(StrictYamlTest, TopLevelMustBeAMapping) {
   EXPECT_THROW(StrictYaml::LoadString("- 1\n- 2\n", "s.yaml"), InputError);
 }

@@ -126,7 +126,9 @@ void ExecutiveComponent::OnPose(const message::LocalizationPose& p) {
         MapPose{ring, p.best.edge_index, p.best.forward ? +1 : -1, p.best.offset_in},
         fmt::format("ring '{}' edge {} ({})", p.best.ring_id, p.best.edge_index,
                     p.best.forward ? "forward" : "backward"));
-  } else if (p.status == message::LocalizationStatus::kLost) {
+  } else {
+    // LOST (the evidence is against the pose) or RECOVERING (not sure of it any more): the
+    // pose is no longer to be trusted either way.
     executive_.OnLost();
   }
   Report();

@@ -6,6 +6,8 @@
 #include <numeric>
 #include <utility>
 
+#include "common/units.h"
+
 namespace stickrep::landmark {
 
 std::vector<sensing::JambCandidate> CandidatesAfterCasingRule(
@@ -79,16 +81,86 @@ std::vector<sensing::JambCandidate> CandidatesAfterCasingRule(
   return out;
 }
 
+vision::PairWidthLimits LegalPairWidths(const sensing::CameraModel& camera, double sdis_in,
+                                        double theta_rad, double min_width_in,
+                                        double max_width_in, const WidthGate& gate) {
+  constexpr int kPlaces = 24;
+  const double half_fov = camera.fov_rad / 2.0;
+  const double dtheta = gate.stare_tolerance_deg * kPi / 180.0;
+  vision::PairWidthLimits out{1e9, 0.0};
+  for (double d : {sdis_in * (1.0 - gate.range_tolerance), sdis_in * (1.0 + gate.range_tolerance)}) {
+    for (double th : {theta_rad - dtheta, theta_rad, theta_rad + dtheta}) {
+      // The wall along x at distance d; a ray at angle a from the optical axis meets it at
+      // x = d tan(th + a). Doors of either width anywhere from the left edge of the view to
+      // the right one.
+      if (std::abs(th) + half_fov >= 0.5 * kPi - 1e-3) continue;
+      const double x_lo = d * std::tan(th - half_fov), x_hi = d * std::tan(th + half_fov);
+      for (double width : {min_width_in, max_width_in}) {
+        for (int k = 0; k <= kPlaces; ++k) {
+          const double x0 = x_lo + (x_hi - x_lo - width) * k / kPlaces;
+          if (x0 < x_lo || x0 + width > x_hi) continue;
+          const double px = camera.ColumnOfAngle(std::atan((x0 + width) / d) - th) -
+                            camera.ColumnOfAngle(std::atan(x0 / d) - th);
+          if (width == min_width_in) out.min_px = std::min(out.min_px, px);
+          if (width == max_width_in) out.max_px = std::max(out.max_px, px);
+        }
+      }
+    }
+  }
+  if (out.max_px <= 0.0) return vision::PairWidthLimits{};  // nothing fits: no gate
+  // Sub-pixel jamb error (§5.5: up to 5 px each) on both sides.
+  out.min_px = std::max(0.0, out.min_px - 2.0);
+  out.max_px += 2.0;
+  return out;
+}
+
 LandmarkPipeline::LandmarkPipeline(const sensing::RobotConfig& robot,
                                    vision::RibbonDetectorParams detector,
-                                   sensing::LandmarkEstimatorConfig estimator, CasingRule casing)
+                                   sensing::LandmarkEstimatorConfig estimator, CasingRule casing,
+                                   WidthGate gate)
     : robot_(robot),
       detector_(detector),
       estimator_(robot, std::move(estimator)),
-      casing_(casing) {}
+      casing_(casing),
+      gate_(gate) {
+  min_class_in_ = 1e9;
+  for (const sensing::ClassBoundary& b : sensing::DefaultBoundaries()) {
+    min_class_in_ = std::min(min_class_in_, b.low_in);
+    max_class_in_ = std::max(max_class_in_, b.high_in);
+  }
+}
+
+vision::PairWidthLimits LandmarkPipeline::GateLimits(const sensing::SonarScan& scan) const {
+  if (!gate_.enabled) return {};
+  const sensing::SonarRingModel& ring = estimator_.ring();
+  int best = -1;
+  for (int k = 0; k < ring.count && k < static_cast<int>(scan.ranges_in.size()) &&
+                  k < static_cast<int>(scan.valid.size());
+       ++k) {
+    if (!scan.valid[k] || !std::isfinite(scan.ranges_in[k]) ||
+        std::abs(ring.BearingOf(k)) >= kPi / 3.0) {
+      continue;
+    }
+    if (best < 0 || scan.ranges_in[k] < scan.ranges_in[best]) best = k;
+  }
+  if (best < 0) return {};
+  // As the Short Side reads them (§5.3): the nearest sensor faces the wall.
+  const double theta = -ring.BearingOf(best);
+  const double sdis = scan.ranges_in[best] + ring.head_radius_in -
+                      robot_.camera.offset_forward_in * std::cos(theta);
+  if (!(sdis > 0.0)) return {};
+  return LegalPairWidths(estimator_.camera(), sdis, theta, min_class_in_,
+                         max_class_in_ + 2.0 * gate_.casing_allowance_in, gate_);
+}
 
 FrameOutcome LandmarkPipeline::Process(const vision::ImageView& frame,
                                        const sensing::SonarScan& scan) const {
+  return Process(frame, scan, nullptr);
+}
+
+FrameOutcome LandmarkPipeline::Process(const vision::ImageView& frame,
+                                       const sensing::SonarScan& scan,
+                                       vision::RibbonDetection* detection) const {
   FrameOutcome out;
   const int coaxial = robot_.camera.coaxial_sensor;
   if (coaxial < 0 || coaxial >= static_cast<int>(scan.ranges_in.size()) ||
@@ -99,15 +171,18 @@ FrameOutcome LandmarkPipeline::Process(const vision::ImageView& frame,
     return out;
   }
   const double range_in = scan.ranges_in[coaxial] + robot_.sonar_ring.head_radius_in;
-  const vision::DetectResult detected = detector_.Detect(frame, range_in);
+  out.width_limits = GateLimits(scan);
+  const vision::DetectResult detected = detector_.Detect(frame, range_in, out.width_limits);
   if (!detected.ok()) {
     out.kind = FrameOutcome::Kind::kBadFrame;
     out.reason = std::string(vision::ToString(detected.status)) + ": " + detected.message;
     return out;
   }
   out.candidates = static_cast<int>(detected.detection.pairs.size());
-  const std::vector<sensing::JambCandidate> candidates =
-      CandidatesAfterCasingRule(detected.detection, casing_, &out.casings);
+  out.pairs_before_cap = detected.detection.pairs_before_cap;
+  if (detection) *detection = detected.detection;
+  out.ranked = CandidatesAfterCasingRule(detected.detection, casing_, &out.casings);
+  const std::vector<sensing::JambCandidate>& candidates = out.ranked;
   const auto estimate = estimator_.Estimate(scan, candidates);
   if (!estimate.ok()) {
     out.kind = FrameOutcome::Kind::kNoDoor;

@@ -23,7 +23,32 @@ struct FrameOutcome {
   double center_offset_in = 0.0;  // ribbon centre along the wall from the optical axis
   int candidates = 0;             // candidate jamb pairs the detector offered
   int casings = 0;                // of those, recognised as a casing round an inner pair
+  // The candidates handed to the classifier (after the width gate and the casing rule), in
+  // the detector's order, and the pair widths the gate allowed.
+  std::vector<sensing::JambCandidate> ranked;
+  vision::PairWidthLimits width_limits;
+  int pairs_before_cap = 0;  // pairs within the limits before the detector's max_pairs
 };
+
+// The width gate: pairs are kept only when some legal door class could be that wide in the
+// image at the sonar's range and stare (Chapter 5: the Short Side's sdis and theta). The
+// door may be anywhere wholly in view; the stare is known to half a sensor spacing (§5.3:
+// "as great as 7.5°") and the range to range_tolerance.
+struct WidthGate {
+  bool enabled = true;
+  double stare_tolerance_deg = 7.5;
+  double range_tolerance = 0.15;  // share of the range: the sonar's error at oblique incidence
+  // Added to the widest class on each side: the outer edges of a door's casing (the casing
+  // rule needs that pair to find the opening inside it). 3 in is the rendered casing; ours.
+  double casing_allowance_in = 4.0;
+};
+
+// Pair widths (px) that a door of [min_width_in, max_width_in] can have when the wall is
+// sdis_in from the camera at theta_rad (optical axis to wall normal), give or take the
+// tolerances of `gate`, with the door anywhere wholly in view.
+vision::PairWidthLimits LegalPairWidths(const sensing::CameraModel& camera, double sdis_in,
+                                        double theta_rad, double min_width_in,
+                                        double max_width_in, const WidthGate& gate);
 
 // The casing rule: how a door's frame is told apart from the door.
 //
@@ -66,14 +91,23 @@ struct CasingRule {
 class LandmarkPipeline {
  public:
   LandmarkPipeline(const sensing::RobotConfig& robot, vision::RibbonDetectorParams detector,
-                   sensing::LandmarkEstimatorConfig estimator, CasingRule casing = {});
+                   sensing::LandmarkEstimatorConfig estimator, CasingRule casing = {},
+                   WidthGate gate = {});
   FrameOutcome Process(const vision::ImageView& frame, const sensing::SonarScan& scan) const;
+  // The same, with the detector's own output (for drawing and measuring).
+  FrameOutcome Process(const vision::ImageView& frame, const sensing::SonarScan& scan,
+                       vision::RibbonDetection* detection) const;
 
  private:
   sensing::RobotConfig robot_;
   vision::RibbonDetector detector_;
   sensing::LandmarkEstimator estimator_;
+  // The gate's limits for this scan: the Short Side stare from the nearest valid sensor.
+  vision::PairWidthLimits GateLimits(const sensing::SonarScan& scan) const;
+
   CasingRule casing_;
+  WidthGate gate_;
+  double min_class_in_ = 0.0, max_class_in_ = 0.0;  // the classifier's outer boundaries
 };
 
 // The candidates handed to the classifier: the detector's pairs after the casing rule

@@ -71,10 +71,15 @@ Frame Render(const world::Scene& scene, const world::Pose2d& X_WR, double roll_d
   return out;
 }
 
-FrameOutcome Process(const Frame& frame, CasingRule rule = {}) {
-  const LandmarkPipeline pipeline(sensing::RobotConfig{}, vision::RibbonDetectorParams{},
+FrameOutcome ProcessWith(const Frame& frame, const vision::RibbonDetectorParams& detector,
+                         CasingRule rule = {}) {
+  const LandmarkPipeline pipeline(sensing::RobotConfig{}, detector,
                                   sensing::LandmarkEstimatorConfig{}, rule);
   return pipeline.Process(frame.view(), frame.scan);
+}
+
+FrameOutcome Process(const Frame& frame, CasingRule rule = {}) {
+  return ProcessWith(frame, vision::RibbonDetectorParams{}, rule);
 }
 
 // The observation is of the door's jambs (not its casing) and of the given class.
@@ -102,12 +107,20 @@ TEST(LandmarkPipelineTest, Classifies30InDoorAtEightFeetBy30WhereItsCasingReads3
   // pipeline (docs/measured_error_model.md), not the casing.
   const Frame frame = Render(DoorScene(30), Facing(30, 96.0, -3.0));
   ExpectJambsClassified(frame, Process(frame), DoorClass::k30);
-  // Without the rule the most confident pair is the casing: 30 + 2 x 3 in, class 36.
+  // Without the rule, and without the detector's one-face rule, the most confident pair
+  // is the casing: 30 + 2 x 3 in, class 36.
   CasingRule off;
   off.enabled = false;
-  const FrameOutcome without = Process(frame, off);
+  vision::RibbonDetectorParams any_face;
+  any_face.two_faces_factor = 1.0;
+  const FrameOutcome without = ProcessWith(frame, any_face, off);
   ASSERT_EQ(without.kind, FrameOutcome::Kind::kObservation) << without.reason;
   EXPECT_EQ(without.observation.door_class, DoorClass::k36);
+  // The one-face rule alone marks the casing pair down (its casing-to-opening edges step
+  // between two faces inside it): the opening is classified even without the casing rule.
+  const FrameOutcome one_face = Process(frame, off);
+  ASSERT_EQ(one_face.kind, FrameOutcome::Kind::kObservation) << one_face.reason;
+  EXPECT_EQ(one_face.observation.door_class, DoorClass::k30);
 }
 
 TEST(LandmarkPipelineTest, Classifies32InDoorAtEightFeetBy32WhereItsCasingReads40) {
@@ -115,7 +128,9 @@ TEST(LandmarkPipelineTest, Classifies32InDoorAtEightFeetBy32WhereItsCasingReads4
   ExpectJambsClassified(frame, Process(frame), DoorClass::k32);
   CasingRule off;
   off.enabled = false;
-  const FrameOutcome without = Process(frame, off);
+  vision::RibbonDetectorParams any_face;
+  any_face.two_faces_factor = 1.0;
+  const FrameOutcome without = ProcessWith(frame, any_face, off);
   ASSERT_EQ(without.kind, FrameOutcome::Kind::kObservation) << without.reason;
   EXPECT_EQ(without.observation.door_class, DoorClass::k40);
 }
@@ -281,6 +296,65 @@ TEST(CasingRuleTest, WithdrawsPairsFromTheCasingToADoubleDoorSeam) {
     EXPECT_FALSE(c.footprints.lj_px == 100.0 || c.footprints.rj_px == 424.0)
         << c.footprints.lj_px << ", " << c.footprints.rj_px;
   }
+}
+
+}  // namespace
+}  // namespace stickrep::landmark
+
+namespace stickrep::landmark {
+namespace {
+
+sensing::CameraModel DefaultCamera() {
+  return sensing::CameraModel::FromConfig(sensing::RobotConfig{}.camera);
+}
+
+TEST(LegalPairWidthsTest, SquareOnTheLimitsBracketThePinholeWidths) {
+  const sensing::CameraModel cam = DefaultCamera();
+  WidthGate gate;
+  const vision::PairWidthLimits l = LegalPairWidths(cam, 72.0, 0.0, 28.5, 48.0, gate);
+  const double f = 1.0 / cam.pitch_over_focal;
+  // A 28.5 in door at 72 in is 28.5 / 72 f px square-on; at a farther range (+15 %) or
+  // turned 7.5° it looks narrower. A 48 in one looks widest at the near side of the view.
+  EXPECT_LT(l.min_px, f * 28.5 / 72.0);
+  EXPECT_GT(l.min_px, 0.7 * f * 28.5 / 72.0);
+  EXPECT_GT(l.max_px, f * 48.0 / 72.0);
+  EXPECT_LT(l.max_px, 1.5 * f * 48.0 / 72.0);
+}
+
+TEST(LegalPairWidthsTest, ObliqueStaresAdmitNarrowerDoors) {
+  const sensing::CameraModel cam = DefaultCamera();
+  const WidthGate gate;
+  const vision::PairWidthLimits square = LegalPairWidths(cam, 72.0, 0.0, 28.5, 84.0, gate);
+  const vision::PairWidthLimits oblique =
+      LegalPairWidths(cam, 72.0, DegToRad(45.0), 28.5, 84.0, gate);
+  EXPECT_LT(oblique.min_px, 0.75 * square.min_px);
+}
+
+// A frame whose sonar says the wall is 20 ft away: a pair 400 px wide is no legal door
+// there (84 in at 240 in is about 170 px) and the pipeline does not offer it.
+TEST(LandmarkPipelineTest, APairWiderThanAnyLegalClassAtTheRangeIsPruned) {
+  cv::Mat img(480, 512, CV_8UC1, cv::Scalar(180));
+  img.colRange(56, 456).setTo(60);  // a dark face 400 px wide on a light wall
+  const vision::ImageView view{img.cols, img.rows, static_cast<int>(img.step), "mono8",
+                               img.data, img.total()};
+  sensing::SonarScan scan;
+  for (int k = 0; k < 24; ++k) {
+    scan.ranges_in.push_back(232.5);  // 240 in from the ring centre
+    scan.valid.push_back(true);
+  }
+  const LandmarkPipeline gated(sensing::RobotConfig{}, vision::RibbonDetectorParams{},
+                               sensing::LandmarkEstimatorConfig{});
+  WidthGate off;
+  off.enabled = false;
+  const LandmarkPipeline open(sensing::RobotConfig{}, vision::RibbonDetectorParams{},
+                              sensing::LandmarkEstimatorConfig{}, CasingRule{}, off);
+  const FrameOutcome with = gated.Process(view, scan);
+  const FrameOutcome without = open.Process(view, scan);
+  EXPECT_LT(with.width_limits.max_px, 250.0);
+  EXPECT_EQ(with.candidates, 0);
+  ASSERT_EQ(without.candidates, 1);
+  EXPECT_NEAR(without.ranked.at(0).footprints.rj_px - without.ranked.at(0).footprints.lj_px,
+              400.0, 2.0);
 }
 
 }  // namespace

@@ -9,6 +9,12 @@
 
 namespace stickrep::localizer {
 
+namespace {
+// A place of the filter this many edges or fewer from the tracked one, in the same direction,
+// is the tracked pose slipped (a reversal, a missed anchor), not another place.
+constexpr int kNearEdges = 4;
+}  // namespace
+
 const char* ToString(Status s) {
   switch (s) {
     case Status::kRecovering: return "RECOVERING";
@@ -36,6 +42,10 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
   if (assembler_.TakeReversal()) {
     if (tracker_.status() == TrackStatus::kTracking) {
       // The same place, travelled the other way: the edge is entered from its other end.
+      if (bayes_) {
+        bayes_->Reverse(assembler_.reversal_travel_in());
+        assembler_.Restart();
+      }
       TrackedPose p = tracker_.pose();
       const double metric = map_.ring(p.ring).edges[p.edge].metric_in;
       p.dir = -p.dir;
@@ -59,7 +69,11 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
     Rebuild(odometer_in, "travel reversed: a new sequence");
     return true;
   }
-  if (tracker_.status() == TrackStatus::kTracking) return Track(odometer_in, edges);
+  // With the filter, the pose stays until the filter gives it up (the tracker may have lost
+  // its anchor meanwhile); without it, while the tracker keeps it.
+  const bool localized = bayes_ ? estimate_.status == Status::kLocalized
+                                : tracker_.status() == TrackStatus::kTracking;
+  if (localized) return Track(odometer_in, edges);
   const bool changed = Recover(odometer_in, edges);
   if (estimate_.status == Status::kLocalized) StartTracking(odometer_in);
   return changed;
@@ -75,6 +89,7 @@ void Localizer::ResetRecovery() {
   matcher_.Reset();
   if (bayes_) bayes_->Reset();
   assembler_.Restart();
+  recovery_edges_ = 0;
 }
 
 bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& edges) {
@@ -83,23 +98,121 @@ bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& ed
   if (!edges.empty() && assembler_.last_edge_end_in()) {
     tracker_.OnEdges(edges, *assembler_.last_edge_end_in());
   }
+  if (bayes_) return TrackWithFilter(odometer_in, edges);
   if (tracker_.status() == TrackStatus::kLost) {
-    // Kidnapped, or the odometry drifted beyond repair: recover from scratch.
-    losses_++;
-    ResetRecovery();
-    estimate_ = PoseEstimate{};
-    estimate_.status = Status::kLost;
-    estimate_.message = "pose lost (" + tracker_.message() + "): recovering again";
-    was_localized_ = false;
+    // The anticipated edges stopped coming (kidnapped, or the odometry drifted beyond
+    // repair): recover from scratch.
+    Lose("pose lost (" + tracker_.message() + "): recovering again");
     return true;
   }
-  const TrackedPose p = tracker_.pose();
-  estimate_.hypotheses = {MakeHypothesisAt(p.ring, p.edge, p.dir, p.offset_in, 1.0)};
-  estimate_.candidates = 1;
-  estimate_.confidence = 1.0;
-  estimate_.status = Status::kLocalized;
-  estimate_.message = tracker_.message();
+  PublishTracked(1.0, tracker_.message());
   return !edges.empty();
+}
+
+// Integrity: the filter weighs every edge as in recovery, the tracked place and the
+// alternatives alike, and it decides which place the robot is at. The tracker places the
+// robot along that edge by the odometer between edges. The pose stays LOCALIZED while the
+// filter's belief in the tracked place holds keep_threshold; a place the filter is as sure of
+// as a recovery needs takes over; otherwise the pose is given up: LOST when the belief in it
+// has fallen under lost_threshold (the evidence is against it), RECOVERING when it is merely
+// no longer sure. The filter's belief is kept either way: it goes on from there.
+bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges) {
+  if (edges.empty()) {
+    PublishTracked(estimate_.confidence, tracker_.message());
+    return false;
+  }
+  ExtendBayes(edges);
+  const double tracked = BeliefInTrackedPose();
+  const recovery::PoseBelief& best = bayes_->best();
+  const bool near = NearTrackedPose(best);
+  if ((tracked >= config_.keep_threshold || near) && best.probability >= config_.keep_threshold) {
+    // The place holds. The tracker dead-reckons between edges (through a corner's turn, or
+    // after a reversal, it can slip an edge or lose its anchor): it is put where the filter
+    // places the robot after this edge.
+    std::string message = tracker_.message();
+    if (tracker_.status() != TrackStatus::kTracking || !TrackerAtFilterPlace(best)) {
+      Rebuild(odometer_in, estimate_.message);
+      StartTracking(odometer_in);
+      message = "re-anchored on the sensed edges: " + tracker_.message();
+    }
+    PublishTracked(std::max(tracked, best.probability), message);
+  } else if (best.probability >= config_.bayes.settings.threshold) {
+    // The filter is as sure of another place as a recovery needs to be: the pose moves there.
+    Rebuild(odometer_in, estimate_.message);
+    StartTracking(odometer_in);
+    PublishTracked(best.probability, "the sensed edges place the robot elsewhere: " +
+                                         tracker_.message());
+  } else {
+    const bool lost = tracked < config_.lost_threshold;
+    LeaveLocalized(odometer_in, lost ? Status::kLost : Status::kRecovering,
+                   fmt::format("the sensed edges {} the pose (belief {:.3f}): recovering from the "
+                               "filter's belief",
+                               lost ? "are against" : "no longer confirm", tracked));
+  }
+  return true;
+}
+
+// The pose is given up but the filter's belief kept: the recovery goes on from it.
+void Localizer::LeaveLocalized(double odometer_in, Status status, const std::string& why) {
+  if (status == Status::kLost) losses_++;
+  tracker_.Stop(why);
+  recovery_edges_ = 0;
+  was_localized_ = false;
+  Rebuild(odometer_in, why);
+  estimate_.status = status;
+}
+
+void Localizer::PublishTracked(double confidence, const std::string& message) {
+  const TrackedPose p = tracker_.pose();
+  estimate_.hypotheses = {MakeHypothesisAt(p.ring, p.edge, p.dir, p.offset_in, confidence)};
+  estimate_.candidates = 1;
+  estimate_.confidence = confidence;
+  estimate_.status = Status::kLocalized;
+  estimate_.message = message;
+}
+
+bool Localizer::TrackerAtFilterPlace(const recovery::PoseBelief& b) const {
+  // The filter's state (g, dir): g sensed last, the robot in the edge after it.
+  const int next = index_.Step(b.edge, b.dir);
+  const int g = next >= 0 ? next : b.edge;
+  const TrackedPose p = tracker_.pose();
+  return p.dir == b.dir && index_.RingOf(g) == p.ring && g - index_.RingOffset(p.ring) == p.edge;
+}
+
+bool Localizer::NearTrackedPose(const recovery::PoseBelief& b) const {
+  if (b.edge < 0) return false;
+  const TrackedPose p = tracker_.pose();
+  if (b.dir != p.dir || index_.RingOf(b.edge) != p.ring) return false;
+  const int n = index_.RingSize(p.ring);
+  int d = std::abs(b.edge - index_.RingOffset(p.ring) - p.edge);
+  if (index_.RingClosed(p.ring)) d = std::min(d, n - d);
+  return d <= kNearEdges;
+}
+
+double Localizer::BeliefInTrackedPose() const {
+  const TrackedPose p = tracker_.pose();
+  const int ring_size = index_.RingSize(p.ring);
+  double belief = 0.0;
+  // Filter state (g, dir): g sensed last, the robot in the edge after it (k = 1). A
+  // neighbour counts too (k = 0, 2; k = -1: the tracker is an edge behind): the pose may be
+  // anchored on an edge whose end the filter has not been given yet.
+  for (int k = -1; k <= 2; ++k) {
+    int e = p.edge - p.dir * k;
+    if (index_.RingClosed(p.ring)) e = (e % ring_size + ring_size) % ring_size;
+    if (e < 0 || e >= ring_size) continue;
+    belief += bayes_->PoseProbability(index_.RingOffset(p.ring) + e, p.dir);
+  }
+  return belief;
+}
+
+void Localizer::Lose(const std::string& why) {
+  losses_++;
+  tracker_.Stop(why);
+  ResetRecovery();
+  estimate_ = PoseEstimate{};
+  estimate_.status = Status::kLost;
+  estimate_.message = why;
+  was_localized_ = false;
 }
 
 bool Localizer::Recover(double odometer_in, const std::vector<map::SensedEdge>& edges) {
@@ -143,6 +256,7 @@ bool Localizer::ExtendDeterministic(const std::vector<map::SensedEdge>& edges) {
 
 void Localizer::ExtendBayes(const std::vector<map::SensedEdge>& edges) {
   for (const map::SensedEdge& e : edges) bayes_->Add(e);
+  recovery_edges_ += static_cast<int>(edges.size());
 }
 
 void Localizer::Rebuild(double odometer_in, const std::string& message) {
@@ -162,7 +276,7 @@ void Localizer::Rebuild(double odometer_in, const std::string& message) {
       estimate_.hypotheses.push_back(MakeHypothesis(b.edge, b.dir, past_in, b.probability));
       estimate_.candidates += b.probability > 1e-3;
     }
-    estimate_.edges_sensed = bayes_->edges();
+    estimate_.edges_sensed = recovery_edges_;
     estimate_.confidence = top.empty() ? 0.0 : top.front().probability;
     const bool localized = bayes_->status() == recovery::RecoveryStatus::kLocalized;
     estimate_.status = localized ? Status::kLocalized : Status::kRecovering;

@@ -60,6 +60,13 @@ struct LocalizerConfig {
   int max_hypotheses = 64;
   // Pose maintenance once localized (§3.3).
   PoseTrackerConfig tracker;
+  // Bayes: once localized, the filter keeps weighing every sensed edge, and the pose stays
+  // LOCALIZED while the filter's belief in it (the tracked edge or a neighbour, its
+  // direction) is at least keep_threshold; below, it is LOST when under lost_threshold and
+  // RECOVERING otherwise, and the filter, which has kept the alternatives, recovers from
+  // there.
+  double keep_threshold = 0.9;
+  double lost_threshold = 0.05;
 };
 
 // The localizer's logic, free of DDS: door sightings and the odometer in, a pose estimate
@@ -102,6 +109,18 @@ class Localizer {
   bool Recover(double odometer_in, const std::vector<map::SensedEdge>& edges);
   void StartTracking(double odometer_in);
   void ResetRecovery();
+  bool TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges);
+  // The tracked pose as the estimate: LOCALIZED with `confidence`.
+  void PublishTracked(double confidence, const std::string& message);
+  // Whether the tracker has the robot in the edge the filter's place puts it in.
+  bool TrackerAtFilterPlace(const recovery::PoseBelief& b) const;
+  // Whether a place of the filter is the tracked pose slipped by a few edges.
+  bool NearTrackedPose(const recovery::PoseBelief& b) const;
+  // The share of the Bayes filter's belief that agrees with the tracked pose.
+  double BeliefInTrackedPose() const;
+  // The pose is given up: LOST, and a new recovery starts from nothing.
+  void Lose(const std::string& why);
+  void LeaveLocalized(double odometer_in, Status status, const std::string& why);
 
   const map::Map& map_;
   LocalizerConfig config_;
@@ -114,6 +133,7 @@ class Localizer {
   std::uint64_t restarts_ = 0;
   std::uint64_t losses_ = 0;
   std::uint64_t edges_total_ = 0;
+  int recovery_edges_ = 0;  // edges weighed since the current recovery began
   bool was_localized_ = false;
 };
 

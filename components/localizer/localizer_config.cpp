@@ -38,6 +38,17 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);
   s.bayes_confirm_edges = c.Get<int>("bayes_confirm_edges", 0, 20);
+  s.bayes_keep_threshold = c.Get<double>("bayes_keep_threshold", 0.0, 0.999999);
+  if (s.bayes_keep_threshold > s.bayes_threshold) {
+    c.Fail("bayes_keep_threshold", "must not be above bayes_threshold (" +
+                                       std::to_string(s.bayes_threshold) + ")");
+  }
+  s.bayes_lost_threshold = c.Get<double>("bayes_lost_threshold", 0.0, 0.999999);
+  if (s.bayes_lost_threshold > s.bayes_keep_threshold) {
+    c.Fail("bayes_lost_threshold", "must not be above bayes_keep_threshold (" +
+                                       std::to_string(s.bayes_keep_threshold) + ")");
+  }
+  s.bayes_kidnap_per_edge = c.Get<double>("bayes_kidnap_per_edge", 0.0, 0.5);
   c.Finish();
   return s;
 }
@@ -53,6 +64,9 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes.settings.threshold = settings.bayes_threshold;
     config.bayes.settings.outlier = settings.bayes_outlier;
     config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;
+    config.bayes.settings.kidnap_per_edge = settings.bayes_kidnap_per_edge;
+    config.keep_threshold = settings.bayes_keep_threshold;
+    config.lost_threshold = settings.bayes_lost_threshold;
     config.bayes.settings.max_step_in = settings.view.max_step_in;
   }
   return config;

@@ -25,6 +25,12 @@ struct LocalizerSettings {
   double bayes_outlier = 1e-4;
   // Further edges over which the best place must keep the threshold.
   int bayes_confirm_edges = 0;
+  // Once localized: the belief the pose must keep to stay LOCALIZED, the belief under which
+  // it is LOST (between the two: RECOVERING), and the probability per edge that the robot was
+  // carried anywhere (recovery::BayesSettings::kidnap_per_edge).
+  double bayes_keep_threshold = 0.9;
+  double bayes_lost_threshold = 0.05;
+  double bayes_kidnap_per_edge = 0.0;
 };
 
 // Reads the `localizer` section; every key required, unknown keys rejected (InputError with

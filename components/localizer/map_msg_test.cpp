@@ -106,7 +106,8 @@ TEST(MapMsgTest, AnOpenRingTurnsAtItsLastNodeByTheAdjacencyAngle) {
   second.x_in(100.0);
   ring.edges({first, second});
   msg.rings({ring});
-  const map::Ring& back = FromMsg(msg).ring(0);
+  const map::Map map = FromMsg(msg);
+  const map::Ring& back = map.ring(0);
   ASSERT_EQ(back.NodeCount(), 3);
   EXPECT_NEAR(back.nodes[2].x_in, 100.0, 1e-9);
   EXPECT_NEAR(back.nodes[2].y_in, -50.0, 1e-9);

@@ -88,6 +88,12 @@ class PoseTracker {
   // travel_direction(). Returns false (and stays or becomes IDLE) for a pose not on the map.
   bool Start(const TrackedPose& pose, double odometer_in, int odometer_sign);
 
+  // Stops tracking (IDLE): the pose was found wrong elsewhere.
+  void Stop(const std::string& why) {
+    status_ = TrackStatus::kIdle;
+    message_ = why;
+  }
+
   // Dead reckoning: a new odometer reading. Counts anticipated doors that were not seen.
   void Advance(double odometer_in);
   // One sensed edge whose far end (in the travel direction) was at odometer reading

@@ -276,6 +276,14 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   // left with the wall sensed last time (outside_) starts again here too.
   double leaving = outside_;
   outside_ = 0.0;
+  // A kidnap before this edge: that share of every state starts again from the prior too.
+  const double kidnap = model_.settings.kidnap_per_edge;
+  if (kidnap > 0.0) {
+    for (auto* v : {&n_, &i1_, &i2_, &s1_, &s2_, &t_, &h_}) {
+      for (double& p : *v) p *= 1.0 - kidnap;
+    }
+    leaving = leaving * (1.0 - kidnap) + kidnap;
+  }
 
   for (int s = 0; s < states_; ++s) {
     const int g = s / 2;

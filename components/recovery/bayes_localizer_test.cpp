@@ -394,6 +394,35 @@ TEST_F(BayesLocalizerLeafTest, TheLeafPhasesKeepThePosteriorNormalised) {
   EXPECT_NEAR(sum, 1.0, 1e-9);
 }
 
+// Sure of edge 10 forward, then carried to the other end of the corridor: the edges sensed
+// there (edges 1-5) contradict the held place. With a kidnap share per edge the belief
+// drains to the new place; without one it has nowhere to go but the old place's neighbours.
+TEST_F(BayesLocalizerTest, AKidnapShareLetsTheBeliefMoveToWhereTheRobotWasCarried) {
+  const auto run = [this](double kidnap) {
+    BayesModel m;
+    m.confusion = Resolve(ErrorModel::Paper(), index_);
+    m.settings.threshold = 0.99;
+    m.settings.kidnap_per_edge = kidnap;
+    BayesLocalizer b(index_, m);
+    for (const map::SensedEdge& e : {Wall(150, kNaN, true), Door(DoorClass::k40), Wall(90),
+                                     Door(DoorClass::k36), Wall(75)}) {
+      b.Add(e);
+    }
+    EXPECT_EQ(b.best().edge, 10);
+    for (const map::SensedEdge& e : {Door(DoorClass::k36), Wall(60), Door(DoorClass::k36),
+                                     Wall(60), Door(DoorClass::k32)}) {
+      b.Add(e);
+    }
+    return b;
+  };
+  const BayesLocalizer carried = run(0.01);
+  EXPECT_EQ(carried.best().edge, 5);
+  EXPECT_EQ(carried.best().dir, +1);
+  EXPECT_GT(carried.best().probability, 0.9);
+  const BayesLocalizer held = run(0.0);
+  EXPECT_LT(held.PoseProbability(5, +1), carried.PoseProbability(5, +1));
+}
+
 TEST_F(BayesLocalizerTest, InvalidEdgesAreRejected) {
   BayesLocalizer b = Make(ErrorModel::Paper());
   map::SensedEdge e = Door(DoorClass::k36);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -420,9 +421,14 @@ StudyConfig ParseStudyConfig(const std::string& text, const std::string& name) {
 }
 
 std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment) {
+  // The shortest text that reads back as the same double: a model that loaded loads again
+  // (rounding could push a sum that was just within kSumTolerance past it).
   const auto number = [](double v) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4f", v);
+    for (int precision = 1; precision <= 17; ++precision) {
+      std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+      if (std::strtod(buf, nullptr) == v) break;
+    }
     return std::string(buf);
   };
   const auto distribution = [&](const std::map<map::DoorClass, double>& d) {
@@ -464,7 +470,8 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
              ", missized: " + number(r.missized) + ", missed: " + number(r.missed) + "}\n";
     }
   }
-  if (m.leaf_split > 0.0 || m.leaf_wall_before > 0.0 || m.leaf_wall_after > 0.0) {
+  if (m.leaf_split > 0.0 || m.leaf_sliver > 0.0 || m.leaf_wall_before > 0.0 ||
+      m.leaf_wall_after > 0.0) {
     out += "  leaf_split: " + number(m.leaf_split) + "\n";
     out += "  leaf_sliver: " + number(m.leaf_sliver) + "\n";
     out += "  leaf_wall_before: " + number(m.leaf_wall_before) + "\n";

@@ -137,6 +137,11 @@ struct BayesSettings {
   // as the next thing seen outside, up to this much past the wall's end (across the open
   // end and the corridor beyond: two 120 in hallways).
   double open_end_reach_in = 240.0;
+  // The probability that the robot was carried anywhere on the floor (kidnapped, or its
+  // odometry lost beyond repair) before a sensed edge: that share of the belief starts again
+  // from the prior at every edge, so belief held at a wrong place drains to the right one as
+  // the evidence against it comes. 0: never (the study's runs).
+  double kidnap_per_edge = 0.0;
 };
 
 struct StudyConfig {

@@ -47,7 +47,6 @@ SensedStream::SensedStream(const map::MatchIndex& index, const Confusion& confus
   scale_error_ = noise_.wheel_scale_sigma_rel > 0 ? noise_.wheel_scale_sigma_rel * Gauss() : 0.0;
   next_edge_ = start_.edge;
   next_pos_ = -start_.offset_in;
-  edges_.reserve(32);
 }
 
 double SensedStream::Gauss() {

@@ -25,6 +25,7 @@
 // be replayed exactly and read by several matchers.
 
 #include <cstdint>
+#include <deque>
 #include <random>
 #include <vector>
 
@@ -73,7 +74,8 @@ class SensedStream {
                const map::MatchTolerance& tolerance, std::uint64_t seed);
 
   // The i-th sensed edge (0-based), generated on demand; nullptr when the run reached the
-  // end of an open ring before it.
+  // end of an open ring before it. The edge stays where it is for the stream's lifetime:
+  // generating later edges never moves it.
   const StreamEdge* At(int i);
   const RunStart& start() const { return start_; }
   int dir() const { return start_.dir; }
@@ -128,7 +130,8 @@ class SensedStream {
   bool run_lower_bound_ = false;
   bool run_last_missed_ = false;  // its newest piece is a missed door
   bool first_emitted_ = false;
-  std::vector<StreamEdge> edges_;
+  // A deque: At() hands out pointers that later edges must not invalidate.
+  std::deque<StreamEdge> edges_;
 };
 
 }  // namespace stickrep::recovery

@@ -77,6 +77,21 @@ TEST_F(SensedStreamTest, AFalseDoorSplitsTheWallItSitsIn) {
   EXPECT_GT(found, 3);
 }
 
+// The study keeps the pointer to a wall while it asks for the door that ends it; with the
+// edges in a vector that reallocated, that pointer was left dangling (ASan: a
+// heap-use-after-free in this file's AFalseDoorSplitsTheWallItSitsIn).
+TEST_F(SensedStreamTest, AnEdgeStaysWhereItIsAsLaterEdgesAreGenerated) {
+  const Confusion c = Resolve(ErrorModel::None(), index_);
+  SensedStream s(index_, c, quiet_, exact_, 7);
+  const StreamEdge* first = s.At(0);
+  ASSERT_NE(first, nullptr);
+  const StreamEdge copy = *first;
+  ASSERT_NE(s.At(500), nullptr);
+  EXPECT_EQ(s.At(0), first);
+  EXPECT_EQ(first->truth, copy.truth);
+  EXPECT_EQ(first->sensed.metric_in, copy.sensed.metric_in);
+}
+
 TEST_F(SensedStreamTest, MissedDoorsJoinTheWallsAroundThem) {
   ErrorModel em = ErrorModel::None();
   em.door_correct = 0.0;

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "runtime/executor.h"
+#include "runtime/guarded_type.h"
 #include "runtime/participant.h"
 
 namespace stickrep::runtime {
@@ -73,7 +74,8 @@ class Writer {
 
   Writer(Participant& participant, const std::string& topic)
       : participant_(participant), topic_(topic), listener_(counters_) {
-    writer_ = participant_.CreateDataWriter(topic, new PubSubType(), &listener_);
+    writer_ =
+        participant_.CreateDataWriter(topic, new GuardedPubSubType<PubSubType>(), &listener_);
   }
   ~Writer() { participant_.DeleteDataWriter(writer_); }
   Writer(const Writer&) = delete;
@@ -118,7 +120,8 @@ class Reader : public Drainable {
         topic_(topic),
         on_sample_(std::move(on_sample)),
         listener_(*this) {
-    reader_ = participant_.CreateDataReader(topic, new PubSubType(), &listener_);
+    reader_ =
+        participant_.CreateDataReader(topic, new GuardedPubSubType<PubSubType>(), &listener_);
     executor_.Add(this);
   }
   ~Reader() override {

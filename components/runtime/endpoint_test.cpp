@@ -2,10 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
 #include "basePubSubTypes.h"
 #include "perceptionPubSubTypes.h"
+#include "runtime/guarded_type.h"
+#include "runtime/raw_endpoint.h"
 #include "runtime/system_config.h"
 #include "runtime/test_domain.h"
 #include "systemPubSubTypes.h"
@@ -35,6 +39,82 @@ class EndpointTest : public ::testing::Test {
   Participant a_;
   Participant b_;
 };
+
+using Bytes = std::vector<std::uint8_t>;
+
+Bytes Serialize(msgs::LandmarkObservation m) {
+  msgs::LandmarkObservationPubSubType support;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(support.getSerializedSizeProvider(&m)());
+  EXPECT_TRUE(support.serialize(&m, &payload));
+  return Bytes(payload.data, payload.data + payload.length);
+}
+
+// Payloads Fast CDR cannot read, as the fuzz targets found them: a boolean byte of 2
+// (fuzz_perception_cdr) and an encapsulation header that is not CDR (fuzz_sensors_cdr). The
+// generated deserialize lets Fast CDR's BadParamException escape for both.
+std::vector<Bytes> MalformedObservations(double width_in) {
+  msgs::LandmarkObservation m;
+  m.width_in(width_in);
+  m.in_envelope(false);
+  const Bytes no = Serialize(m);
+  m.in_envelope(true);
+  const Bytes yes = Serialize(m);
+  Bytes bad_bool = no;
+  for (std::size_t i = 0; i < no.size(); ++i) {
+    if (no[i] != yes[i]) bad_bool[i] = 2;
+  }
+  Bytes bad_header = no;
+  bad_header[0] = 0x7f;
+  return {bad_bool, bad_header};
+}
+
+TEST(GuardedPubSubTypeTest, RefusesMalformedPayloadsInsteadOfThrowing) {
+  runtime::GuardedPubSubType<msgs::LandmarkObservationPubSubType> support;
+  for (Bytes bytes : MalformedObservations(30.0)) {
+    eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
+    std::memcpy(payload.data, bytes.data(), bytes.size());
+    payload.length = static_cast<uint32_t>(bytes.size());
+    msgs::LandmarkObservation m;
+    bool ok = true;
+    EXPECT_NO_THROW(ok = support.deserialize(&payload, &m));
+    EXPECT_FALSE(ok);
+  }
+  msgs::LandmarkObservation good;
+  good.width_in(36.0);
+  Bytes bytes = Serialize(good);
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
+  std::memcpy(payload.data, bytes.data(), bytes.size());
+  payload.length = static_cast<uint32_t>(bytes.size());
+  msgs::LandmarkObservation m;
+  EXPECT_TRUE(support.deserialize(&payload, &m));
+  EXPECT_DOUBLE_EQ(m.width_in(), 36.0);
+}
+
+// A malformed sample from the network is dropped and the reader takes the next one; the
+// exception used to leave Drain on the executor thread and end the process.
+TEST_F(EndpointTest, MalformedPayloadIsDroppedAndTheNextSampleArrives) {
+  Executor ex;
+  std::vector<msgs::LandmarkObservation> got;
+  Reader<msgs::LandmarkObservationPubSubType> reader(
+      b_, ex, "perception/landmark",
+      [&](const msgs::LandmarkObservation& m) { got.push_back(m); });
+  RawWriter writer(a_, "perception/landmark",
+                   [] { return new msgs::LandmarkObservationPubSubType(); },
+                   catalog_.ForTopic("perception/landmark"));
+  ASSERT_TRUE(reader.WaitForMatched(1, 10.0));
+  ASSERT_TRUE(WaitFor([&] { return writer.matched() >= 1; }, 10.0));
+  for (const Bytes& bad : MalformedObservations(30.0)) {
+    ASSERT_TRUE(writer.Publish(bad.data(), bad.size()));
+  }
+  msgs::LandmarkObservation good;
+  good.width_in(33.0);
+  const Bytes bytes = Serialize(good);
+  ASSERT_TRUE(writer.Publish(bytes.data(), bytes.size()));
+  ASSERT_TRUE(SpinUntil(ex, [&] { return !got.empty(); }, 10.0));
+  SpinUntil(ex, [] { return false; }, 0.3);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_DOUBLE_EQ(got[0].width_in(), 33.0);
+}
 
 TEST_F(EndpointTest, SamplesFlowWithHeaderStampedAndSequenced) {
   Executor ex;

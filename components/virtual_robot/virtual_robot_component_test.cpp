@@ -108,11 +108,20 @@ TEST_F(VirtualRobotComponentTest, EachRecoveryIsJudgedOnceAgainstTheTruth) {
   EXPECT_NE(robot_->Summary().find("INCORRECT"), std::string::npos);
 }
 
-TEST_F(VirtualRobotComponentTest, TheRobotIsKidnappedTheConfiguredTimeAfterTheFirstPose) {
-  config_.kidnap_after_localized_s = 1.0;
-  config_.kidnap_jump_in = 400.0;
-  robot_.reset();
-  Make(100.0);
+// A robot configured to be kidnapped, made once: the executor keeps a robot's timers, so a
+// robot must not be replaced on it.
+class VirtualRobotKidnapTest : public VirtualRobotComponentTest {
+ protected:
+  void SetUp() override {
+    config_.world = testing::Exact();
+    config_.seed = 7;
+    config_.kidnap_after_localized_s = 1.0;
+    config_.kidnap_jump_in = 400.0;
+    Make(/*start_in=*/100.0);
+  }
+};
+
+TEST_F(VirtualRobotKidnapTest, TheRobotIsKidnappedTheConfiguredTimeAfterTheFirstPose) {
   const SimTruth t = robot_->sim().Truth();
   robot_->OnPose(Localized(t.seen_edge_index, t.seen_forward_in_ring));
   executor_.RunUntil([] { return false; }, 0.9);

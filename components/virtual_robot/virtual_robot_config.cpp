@@ -7,6 +7,38 @@
 
 namespace stickrep::virtual_robot {
 
+namespace {
+
+// The `realism` section: one switch per clutter feature and the draws' main bounds.
+world::RealismOptions LoadRealism(const StrictYaml& r) {
+  world::RealismOptions o;
+  o.baseboards = r.Get<bool>("baseboards");
+  o.floor_reflections = r.Get<bool>("floor_reflections");
+  o.floor_reflectance = r.Get<double>("floor_reflectance", 0.0, 0.8);
+  o.ceiling_lights = r.Get<bool>("ceiling_lights");
+  o.notice_boards = r.Get<bool>("notice_boards");
+  o.pilasters = r.Get<bool>("pilasters");
+  o.door_appearance = r.Get<bool>("door_appearance");
+  o.dark_door_share = r.Get<double>("dark_door_share", 0.0, 1.0);
+  o.white_door_share = r.Get<double>("white_door_share", 0.0, 1.0);
+  if (o.dark_door_share + o.white_door_share > 1.0) {
+    r.Fail("white_door_share", "dark_door_share + white_door_share must be at most 1");
+  }
+  o.doors_ajar = r.Get<bool>("doors_ajar");
+  o.ajar_share = r.Get<double>("ajar_share", 0.0, 1.0);
+  o.camera_misalignment = r.Get<bool>("camera_misalignment");
+  o.max_roll_deg = r.Get<double>("max_roll_deg", 0.0, 10.0, "deg");
+  o.max_pitch_deg = r.Get<double>("max_pitch_deg", 0.0, 10.0, "deg");
+  o.min_k1 = r.Get<double>("min_k1", -0.3, 0.5);
+  o.max_k1 = r.Get<double>("max_k1", -0.3, 0.5);
+  if (o.min_k1 > o.max_k1) r.Fail("max_k1", "must be at least min_k1");
+  o.illumination = r.Get<bool>("illumination");
+  r.Finish();
+  return o;
+}
+
+}  // namespace
+
 VirtualRobotConfig LoadVirtualRobotConfig(const StrictYaml& c) {
   VirtualRobotConfig out;
   const std::string source = c.Get<std::string>("source");
@@ -37,6 +69,7 @@ VirtualRobotConfig LoadVirtualRobotConfig(const StrictYaml& c) {
   world.image_noise_sigma = c.Get<double>("image_noise_sigma", 0.0, 50.0, "grey levels");
   world.sonar_surface_errors = c.Get<bool>("sonar_surface_errors");
   world.wheel_slip_stddev = c.Get<double>("wheel_slip_stddev", 0.0, 0.2);
+  world.realism = LoadRealism(c.Child("realism"));
   out.start_lateral_offset_max_in = c.Get<double>("start_lateral_offset_max_in", 0.0, 120.0, "in");
   out.start_heading_error_max_deg = c.Get<double>("start_heading_error_max_deg", 0.0, 25.0, "deg");
   if (out.start_lateral_offset_max_in > world.hallway_width_in / 2.0 - 12.0) {

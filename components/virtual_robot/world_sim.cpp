@@ -97,23 +97,30 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   options.opposite_wall_max_step_in = kMaxStepIn;
   options.open_door_fraction = config.open_door_fraction;
   std::mt19937_64 world_rng(seed ^ 0x9E3779B97F4A7C15ull);
+  world::World built;
   if (ring.outline == map::Outline::kCorridor) {
     // A corridor outline (map format 2) stands in its building: every ring of the floor is
     // built (columns, other corridors), and walls are added only opposite side rings whose
     // width the map gives.
     options.opposite_wall = world::OppositeWall::kAuto;
-    scene_ = std::make_unique<world::Scene>(world::BuildMapWorld(map, options, world_rng).world);
+    built = world::BuildMapWorld(map, options, world_rng).world;
   } else {
     // A side ring on its own: the opposite wall at the ring's width, else the configured one.
     options.opposite_wall = world::OppositeWall::kAlways;
-    scene_ = std::make_unique<world::Scene>(
-        world::BuildRingWorld(map, ring_, options, world_rng).world);
+    built = world::BuildRingWorld(map, ring_, options, world_rng).world;
   }
+  // Realism draws from a stream of its own, so switching it leaves the rest of the run's
+  // draws (doors, slip, noise) as they were.
+  std::mt19937_64 realism_rng(seed ^ 0xC2B2AE3D27D4EB4Full);
+  world::ApplyRealism(config.realism, realism_rng, &built);
+  scene_ = std::make_unique<world::Scene>(std::move(built));
   for (int i = 0; i < static_cast<int>(scene_->panels().size()); ++i) {
     const world::Panel& p = scene_->panels()[i];
     if (p.acoustic && p.bottom_in < kBaseHeightIn) obstacle_panels_.push_back(i);
   }
-  camera_ = std::make_unique<world::CameraRenderer>(models_.camera);
+  camera_ = std::make_unique<world::CameraRenderer>(
+      world::DrawCamera(config.realism, models_.camera, realism_rng));
+  light_rng_.seed(seed ^ 0x165667B19E3779F9ull);
   models_.base.slip_stddev = config.wheel_slip_stddev;
   footprint_radius_in_ = robot.sonar_ring.head_radius_in;
 
@@ -299,8 +306,9 @@ std::array<float, 24> WorldSim::Sonar() {
 }
 
 std::vector<std::uint8_t> WorldSim::RenderFrame() {
-  world::Illumination light;
-  light.noise_stddev = config_.image_noise_sigma;
+  world::Illumination base;
+  base.noise_stddev = config_.image_noise_sigma;
+  const world::Illumination light = world::DrawIllumination(config_.realism, base, light_rng_);
   const world::RenderedFrame frame = camera_->Render(*scene_, X_WR_, light, rng_);
   const cv::Mat img = frame.image.isContinuous() ? frame.image : frame.image.clone();
   return std::vector<std::uint8_t>(img.data, img.data + img.total());

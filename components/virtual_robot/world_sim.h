@@ -12,6 +12,7 @@
 #include "stickrep/map.h"
 #include "world/camera_renderer.h"
 #include "world/map_world.h"
+#include "world/realism.h"
 #include "world/robot_models.h"
 #include "world/scene.h"
 #include "world/sonar_error_adapter.h"
@@ -32,6 +33,9 @@ struct WorldSimConfig {
   // counter-clockwise from the axis direction. 0, 0: on the axis, aligned (A3, A4 of §6.3).
   double start_lateral_offset_in = 0.0;
   double start_heading_error_deg = 0.0;
+  // The clutter of real hallways (world::RealismOptions): each feature a switch, drawn from
+  // the seed. The default is the clean hallway.
+  world::RealismOptions realism;
 };
 
 // Where the robot really is, in map terms.
@@ -179,6 +183,7 @@ class WorldSim {
   int collisions_ = 0;
   bool in_contact_ = false;
   std::mt19937_64 rng_;
+  std::mt19937_64 light_rng_;  // each frame's light (realism.illumination)
 };
 
 }  // namespace stickrep::virtual_robot

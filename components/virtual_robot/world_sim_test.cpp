@@ -69,6 +69,18 @@ TEST(WorldSimTest, FrameHasTheCameraSizeAndShowsTheDoorEdges) {
   EXPECT_GE(steps, 2);
 }
 
+TEST(WorldSimTest, RealismChangesTheFramesAndTheSeedReproducesThem) {
+  WorldSimConfig real = Exact();
+  real.realism = world::FullRealism();
+  WorldSim clean(SquareRing(), sensing::RobotConfig{}, Exact(), 200.0, 7);
+  WorldSim a(SquareRing(), sensing::RobotConfig{}, real, 200.0, 7);
+  WorldSim b(SquareRing(), sensing::RobotConfig{}, real, 200.0, 7);
+  const std::vector<std::uint8_t> fc = clean.RenderFrame();
+  const std::vector<std::uint8_t> fa = a.RenderFrame();
+  EXPECT_EQ(fa, b.RenderFrame());
+  EXPECT_NE(fa, fc);
+}
+
 TEST(WorldSimTest, TeleportMovesTheRobotButNotTheEncoders) {
   WorldSim sim(SquareRing(), sensing::RobotConfig{}, Exact(), 100.0, 1);
   sim.Step(1.0, 1.0, 1.0);

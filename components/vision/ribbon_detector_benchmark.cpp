@@ -8,6 +8,7 @@
 #include "common/units.h"
 #include "vision/ribbon_detector.h"
 #include "world/camera_renderer.h"
+#include "world/realism.h"
 #include "world/world.h"
 
 namespace stickrep::vision {
@@ -46,6 +47,36 @@ void BM_Detect(benchmark::State& state) {
   state.SetLabel(state.range(0) == 0 ? "five rows" : "full frame");
 }
 BENCHMARK(BM_Detect)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// A cluttered frame (every realism feature on) 9 ft from a wall of three doors, with the
+// head band in view: the appearance rule's every test runs.
+void BM_DetectRealisticFrame(benchmark::State& state) {
+  world::HallwayOptions options;
+  options.width_in = 216.0;
+  world::World w = world::MakeStraightHallway(
+      {world::HallwayFeature::Wall(120), world::HallwayFeature::Door(36),
+       world::HallwayFeature::Wall(30), world::HallwayFeature::Door(32),
+       world::HallwayFeature::Wall(80), world::HallwayFeature::Door(36),
+       world::HallwayFeature::Wall(120)},
+      options);
+  std::mt19937_64 rng(kSeed);
+  const world::RealismOptions realism = world::FullRealism();
+  world::ApplyRealism(realism, rng, &w);
+  const world::CameraRenderer renderer(world::DrawCamera(realism, world::CameraModel{}, rng));
+  const world::RenderedFrame frame =
+      renderer.Render(world::Scene(w), {200.0, 0.0, 0.0},
+                      world::DrawIllumination(realism, {}, rng), rng);
+  const RibbonDetector detector;
+  size_t pairs = 0;
+  for (auto _ : state) {
+    DetectResult result = detector.Detect(frame.image, frame.truth.axis_range_in);
+    pairs = result.detection.pairs.size();
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["pairs"] = static_cast<double>(pairs);
+  state.SetLabel("five rows, cluttered");
+}
+BENCHMARK(BM_DetectRealisticFrame)->Unit(benchmark::kMicrosecond);
 
 // A frame of uniform noise: the worst case for footprints and pairs (many clumps).
 void BM_DetectNoiseFrame(benchmark::State& state) {

@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "common/units.h"
+
 namespace stickrep::vision {
 namespace {
 
@@ -56,17 +58,34 @@ TEST(PrewittRowTest, MatchesOpenCvFilter2DWithThe5x5Kernel) {
 }
 
 TEST(SampledRowsTest, WithinSixFeetUsesTheFixedFiveRows) {
+  // Outer rows at 0.45 of half the height: 108 px from the centre row 239.5.
   const RibbonDetector detector;
-  EXPECT_THAT(detector.SampledRows(480, 72.0), ElementsAre(60, 232, 240, 248, 420));
-  EXPECT_THAT(detector.SampledRows(480, 30.0), ElementsAre(60, 232, 240, 248, 420));
+  EXPECT_THAT(detector.SampledRows(480, 72.0), ElementsAre(132, 232, 240, 248, 348));
+  EXPECT_THAT(detector.SampledRows(480, 30.0), ElementsAre(132, 232, 240, 248, 348));
 }
 
 TEST(SampledRowsTest, BeyondSixFeetOuterRowsMoveInAsOneOverRange) {
   const RibbonDetector detector;
-  EXPECT_THAT(detector.SampledRows(480, 144.0), ElementsAre(150, 232, 240, 248, 330));
+  EXPECT_THAT(detector.SampledRows(480, 144.0), ElementsAre(186, 232, 240, 248, 294));
   const std::vector<int> far = detector.SampledRows(480, 420.0);
   ASSERT_THAT(far, SizeIs(5));
-  EXPECT_EQ(far[0], 240 - 31);  // 180 * 72 / 420 = 30.9 px
+  EXPECT_EQ(far[0], 240 - 19);  // 108 * 72 / 420 = 18.5 px
+}
+
+TEST(SampledRowsTest, TheOuterRowsStayOnADoorTwiceAsFarAsTheRange) {
+  // A door 80 in tall seen from a camera 40 in up: at twice the range the rows must still
+  // cut it above a 6 in baseboard and below its top (issue 17: rows on the floor's
+  // reflections and the ceiling lights when the range was off).
+  const RibbonDetector detector;
+  const double f = 256.0 / std::tan(DegToRad(55.817) / 2.0);
+  for (double range : {36.0, 72.0, 144.0, 288.0}) {
+    const std::vector<int> rows = detector.SampledRows(480, range);
+    const double far = 2.0 * range;
+    const double top_in = 40.0 + (239.5 - rows.front()) * far / f;
+    const double bottom_in = 40.0 - (rows.back() - 239.5) * far / f;
+    EXPECT_LT(top_in, 80.0) << range;
+    EXPECT_GT(bottom_in, 6.0) << range;
+  }
 }
 
 TEST(RibbonDetectorTest, DarkBandGivesTwoSubPixelFootprintsAndOnePair) {

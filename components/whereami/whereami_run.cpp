@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "common/config_paths.h"
+#include "common/seeds.h"
 #include "common/strict_yaml.h"
 #include "common/units.h"
 #include "localizer/edge_assembler.h"
@@ -20,6 +22,9 @@
 namespace stickrep::whereami {
 
 namespace {
+
+// The seed stream a random kidnap jump is drawn from (common/seeds.h).
+constexpr std::uint64_t kKidnapJumpStream = 1;
 
 StrictYaml Section(const std::string& file, const std::string& key) {
   return StrictYaml::LoadFile(file).Child(key);
@@ -89,6 +94,13 @@ class Run {
 
  private:
   void OnPose(const message::LocalizationPose& p);
+  // Every published pose judged against the truth: confidence samples, wrong spells, LOSTs.
+  void Watch(const message::LocalizationPose& p);
+  bool RightInView(const message::LocalizationPose& p, const virtual_robot::SimTruth& t) const;
+  void OpenSpell();
+  void CloseSpell(const std::string& ended_by);
+  void OnKidnap();
+  int EdgesAlike(int held_edge, int held_dir, int true_edge, int true_dir) const;
   void OnRecovery(const Recovery& r);
   void SendGoalAhead(const Recovery& r);
   void AfterStep();
@@ -109,6 +121,24 @@ class Run {
   component::Publisher<message::MissionGoal>& goals_;
   RunResult result_;
   std::size_t judged_ = 0;  // the virtual robot's pose checks seen
+  // The pose watch: the spell of a wrong LOCALIZED pose under way (and where it began), the
+  // status and edge count of the last pose sample, the kidnap seen.
+  std::optional<WrongSpell> spell_;
+  bool spell_is_kidnap_ = false;
+  long spell_edges_ = 0;
+  double spell_in_ = 0.0;
+  message::LocalizationStatus last_status_ = message::LocalizationStatus::kRecovering;
+  long last_sample_edges_ = -1;
+  bool kidnap_seen_ = false;
+  // The place held at the kidnap and the true one (view edges), until the robot has moved
+  // kCompareAfterIn from the new place and its direction there is known.
+  struct KidnapCompare {
+    int held_edge, held_dir, true_edge;
+    double at_in;
+  };
+  std::optional<KidnapCompare> kidnap_compare_;
+  static constexpr double kCompareAfterIn = 12.0;
+  double first_pose_in_ = -1.0;
   int last_view_edge_ = -1;
   std::string last_belief_;
   message::LocomotionState last_state_ = message::LocomotionState::kStopped;
@@ -172,6 +202,7 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
 void Run::OnPose(const message::LocalizationPose& p) {
   if (measuring_) return;  // the robot travels its distance whatever the pose
   if (options_.trace) TraceBelief(p);
+  Watch(p);
   const std::vector<virtual_robot::PoseCheck>& checks = robot_.checks();
   if (checks.size() > judged_) {
     judged_ = checks.size();
@@ -184,10 +215,131 @@ void Run::OnPose(const message::LocalizationPose& p) {
   }
 }
 
+void Run::Watch(const message::LocalizationPose& p) {
+  const virtual_robot::SimTruth t = sim_.Truth();
+  const bool placed = p.candidate_count > 0;
+  const bool localized = placed && p.status == message::LocalizationStatus::kLocalized;
+  const bool correct = placed && RightInView(p, t);
+  const long edges = static_cast<long>(stack_.localizer().localizer().edges_total());
+  if (placed && (edges != last_sample_edges_ || p.status != last_status_)) {
+    result_.confidences.push_back({p.confidence, localized, correct});
+  }
+  last_sample_edges_ = edges;
+  const bool turned_lost =
+      p.status == message::LocalizationStatus::kLost && last_status_ != p.status;
+  last_status_ = p.status;
+  if (!result_.first) return;  // watched from the first pose on
+  if (spell_) {
+    if (!localized || correct) {
+      CloseSpell(localized ? "corrected" : turned_lost ? "LOST" : "RECOVERING");
+    }
+  } else if (localized && !correct) {
+    if (options_.trace && result_.behaviour_log.size() < 400) {
+      const localizer::Hypothesis& h = stack_.localizer().localizer().estimate().hypotheses.front();
+      result_.behaviour_log.push_back(fmt::format(
+          "{:7.1f} s  wrong pose published as LOCALIZED: view edge {} {} + {:.0f} in, truth view "
+          "edge {} {}: {}",
+          NowS(), h.edge, h.dir > 0 ? "fwd" : "back", h.offset_in,
+          view_.ViewEdge(ring_, t.seen_edge_index), t.seen_forward_in_ring ? "fwd" : "back",
+          p.message));
+    }
+    OpenSpell();
+  }
+  // LOST with no kidnap to notice (none yet, or the robot found itself again since).
+  if (turned_lost && (!robot_.kidnapped() || result_.second)) ++result_.false_losts;
+}
+
+// Whether a published pose names where the robot is, judged in the hallway view the
+// localizer matches in (the steps the follower passes straight merged into the walls either
+// side, so the walls beside a pilaster are one edge): the view edge the camera looks at, or a
+// neighbour, in the direction of travel. Off the start ring (the base went on into another
+// corridor of the floor), as the virtual robot judges it.
+bool Run::RightInView(const message::LocalizationPose& p, const virtual_robot::SimTruth& t) const {
+  const std::vector<localizer::Hypothesis>& hs =
+      stack_.localizer().localizer().estimate().hypotheses;
+  if (t.seen_ring_id != sim_.ring_id() || hs.empty()) {
+    return virtual_robot::PoseMatchesTruth(p.best.ring_id, p.best.edge_index, p.best.forward, t);
+  }
+  const localizer::Hypothesis& h = hs.front();
+  if (h.ring != ring_ || (h.dir > 0) != t.seen_forward_in_ring) return false;
+  const int n = view_.view().ring(ring_).EdgeCount();
+  const int d = std::abs(h.edge - view_.ViewEdge(ring_, t.seen_edge_index));
+  return d <= 1 || (view_.view().ring(ring_).closed && d == n - 1);
+}
+
+void Run::OpenSpell() {
+  spell_ = WrongSpell{};
+  spell_is_kidnap_ = false;
+  spell_edges_ = static_cast<long>(stack_.localizer().localizer().edges_total());
+  spell_in_ = sim_.Truth().distance_in;
+}
+
+void Run::CloseSpell(const std::string& ended_by) {
+  spell_->edges = static_cast<long>(stack_.localizer().localizer().edges_total()) - spell_edges_;
+  spell_->distance_ft = InchesToFeet(sim_.Truth().distance_in - spell_in_);
+  spell_->ended_by = ended_by;
+  if (spell_is_kidnap_) {
+    result_.after_kidnap = *spell_;
+  } else {
+    result_.wrong_localized.push_back(*spell_);
+  }
+  spell_.reset();
+}
+
+// How many edges after the kidnap the map shows alike at the place the localizer holds and
+// at the true one: the partial edge each is in, then whole edges of the same kind (doors of
+// the same class, walls of lengths within the localizer's tolerance) from the first whole
+// edge at the true place, lined up with the held place's next edges at the best of three
+// alignments (the held pose may be inside a door the robot has not yet left), up to 100.
+int Run::EdgesAlike(int held_edge, int held_dir, int true_edge, int true_dir) const {
+  const map::MatchIndex index(view_.view());
+  const int offset = index.RingOffset(ring_);
+  int best = 0;
+  for (int lead = 0; lead <= 2; ++lead) {
+    int a = offset + held_edge;
+    for (int i = 0; i < lead && a >= 0; ++i) a = index.Step(a, held_dir);
+    int b = index.Step(offset + true_edge, true_dir);
+    int alike = 0;
+    for (; alike < 100 && a >= 0 && b >= 0; ++alike) {
+      if (index.code(a) != index.code(b)) break;
+      if (index.code(a) == map::kWallCode &&
+          std::abs(index.metric(a) - index.metric(b)) > std::max(0.10 * index.metric(a), 6.0)) {
+        break;
+      }
+      a = index.Step(a, held_dir);
+      b = index.Step(b, true_dir);
+    }
+    best = std::max(best, alike);
+  }
+  return best + 1;  // the partial edge the robot was kidnapped in
+}
+
+// The kidnap: a pose published as LOCALIZED is wrong from this moment.
+void Run::OnKidnap() {
+  kidnap_seen_ = true;
+  // The place held and the true one, compared once the robot has moved on (the direction it
+  // travels in from the new place is known then).
+  const std::vector<localizer::Hypothesis>& held =
+      stack_.localizer().localizer().estimate().hypotheses;
+  const virtual_robot::SimTruth t = sim_.Truth();
+  if (!held.empty() && held.front().ring == ring_) {
+    kidnap_compare_ = KidnapCompare{held.front().edge, held.front().dir,
+                                    view_.ViewEdge(ring_, t.edge_index), t.distance_in};
+  }
+  if (spell_) CloseSpell("kidnapped");
+  if (last_status_ != message::LocalizationStatus::kLocalized) {
+    result_.after_kidnap = WrongSpell{0, 0.0, "not localized at the kidnap"};
+    return;
+  }
+  OpenSpell();
+  spell_is_kidnap_ = true;
+}
+
 void Run::OnRecovery(const Recovery& r) {
   if (!result_.first) {
     result_.first = r;
-    if (options_.kidnap_after_s < 0.0) {
+    first_pose_in_ = sim_.Truth().distance_in;
+    if (options_.kidnap_after_s < 0.0 && options_.keep_going_ft <= 0.0) {
       result_.ended = "localized";
     } else {
       SendGoalAhead(r);
@@ -195,22 +347,41 @@ void Run::OnRecovery(const Recovery& r) {
   } else if (robot_.kidnapped() && !result_.second) {
     result_.second = r;
     result_.ended = "localized again after the kidnap";
+  } else if (result_.ended.empty()) {
+    // Localized again after the pose was given up: the executive dropped the goal then.
+    SendGoalAhead(r);
   }
 }
 
-// Keeps the robot travelling until the kidnap: a goal half the ring ahead.
+// Keeps the robot travelling until the kidnap: a goal a third of a closed ring ahead (the
+// way on is then the shorter one, so the route does not reverse the robot), or the far end
+// of an open one (a goal past an open ring's end would be a few edges behind the robot).
 void Run::SendGoalAhead(const Recovery& r) {
-  const int n = map_.ring(ring_).EdgeCount();
-  const int ahead = r.forward ? r.edge + n / 2 : r.edge - n / 2 + n;
+  const map::Ring& ring = map_.ring(ring_);
+  const int n = ring.EdgeCount();
+  const int ahead = ring.closed ? (r.forward ? r.edge + n / 3 : r.edge - n / 3 + n) % n
+                                : (r.edge < n / 2 ? n - 1 : 0);
   message::MissionGoal goal;
   goal.header.stamp_ns = stack_.executor().NowNs();
   goal.goal_id = "far";
-  goal.target = fmt::format("{}/{}", r.ring_id, ahead % n);
+  goal.target = fmt::format("{}/{}", r.ring_id, ahead);
   goals_.Publish(goal);
 }
 
-// After each step of the world: the true trace (the view edge the camera looks at).
+// After each step of the world: the kidnap, the distance kept going, and the true trace (the
+// view edge the camera looks at).
 void Run::AfterStep() {
+  if (robot_.kidnapped() && !kidnap_seen_) OnKidnap();
+  if (kidnap_compare_ && sim_.Truth().distance_in > kidnap_compare_->at_in + kCompareAfterIn) {
+    const KidnapCompare& k = *kidnap_compare_;
+    result_.kidnap_edges_alike =
+        EdgesAlike(k.held_edge, k.held_dir, k.true_edge, sim_.Truth().forward_in_ring ? +1 : -1);
+    kidnap_compare_.reset();
+  }
+  if (options_.keep_going_ft > 0.0 && first_pose_in_ >= 0.0 && result_.ended.empty() &&
+      InchesToFeet(sim_.Truth().distance_in - first_pose_in_) >= options_.keep_going_ft) {
+    result_.ended = fmt::format("kept going {:.0f} ft after the pose", options_.keep_going_ft);
+  }
   if (!options_.trace) return;
   const virtual_robot::SimTruth truth = sim_.Truth();
   const int e = view_.ViewEdge(ring_, truth.edge_index);
@@ -239,17 +410,22 @@ void Run::TraceBelief(const message::LocalizationPose& p) {
           : fmt::format("ring '{}' edge {} {} p={:.3f}", p.best.ring_id, p.best.edge_index,
                         p.best.forward ? "fwd" : "back", p.best.probability);
   result_.behaviour_log.push_back(fmt::format(
-      "{:7.1f} s  localizer {}: newest {}, best {}, truth view edge {} {}: {}", NowS(),
-      localizer::ToString(stack_.localizer().localizer().estimate().status), newest, best,
-      view_.ViewEdge(ring_, truth.edge_index), truth.forward_in_ring ? "fwd" : "back",
-      p.message));
+      "{:7.1f} s  localizer {}: newest {}, best {}, truth edge {} (view edge {}) {}: {}",
+      NowS(), localizer::ToString(stack_.localizer().localizer().estimate().status), newest,
+      best, truth.edge_index, view_.ViewEdge(ring_, truth.edge_index),
+      truth.forward_in_ring ? "fwd" : "back", p.message));
 }
 
 RunResult Run::Finish() {
   stack_.executor().RunUntil([this] { return !result_.ended.empty(); }, options_.max_sim_s);
-  if (result_.ended.empty()) {
+  if (result_.ended.empty() && first_pose_in_ >= 0.0) {
+    result_.ended = fmt::format(
+        "{:.0f} ft of travel after the pose by {:.0f} s simulated (the goal reached or given up)",
+        InchesToFeet(sim_.Truth().distance_in - first_pose_in_), options_.max_sim_s);
+  } else if (result_.ended.empty()) {
     result_.ended = fmt::format("no pose after {:.0f} s simulated", options_.max_sim_s);
   }
+  if (spell_) CloseSpell("run ended");
   result_.sim_s = NowS();
   result_.frames = robot_.frames();
   result_.collisions = sim_.Truth().collisions;
@@ -272,16 +448,23 @@ RunResult RunWhereAmI(const RunSetup& setup, const RunOptions& options) {
   RunSetup run_setup = setup;
   virtual_robot::VirtualRobotConfig& vr = run_setup.virtual_robot;
   vr.seed = options.seed;
-  vr.kidnap_after_localized_s = options.kidnap_after_s;
-  vr.kidnap_jump_in = options.kidnap_jump_in;
   vr.summary_png.clear();
   if (!options.ring_id.empty()) vr.world.ring_id = options.ring_id;
   const int ring = vr.world.ring_id.empty() ? 0 : map.FindRing(vr.world.ring_id);
   if (ring < 0) throw std::invalid_argument("no ring '" + vr.world.ring_id + "' in the map");
+  vr.kidnap_after_localized_s = options.kidnap_after_s;
+  vr.kidnap_jump_in = options.kidnap_jump_in;
+  if (options.kidnap_jump_random) {
+    // Its own stream of the seed: the start's draw stays as it was.
+    std::mt19937_64 rng(StreamSeed(options.seed, kKidnapJumpStream));
+    const double length = map.ring(ring).LengthIn();
+    vr.kidnap_jump_in = std::uniform_real_distribution<double>(0.1, 0.9)(rng) * length;
+  }
   virtual_robot::PlacedRobot placed = virtual_robot::PlaceRobot(map, setup.robot, vr, ring);
   Run run(run_setup, options, std::move(placed), ring);
   RunResult result = run.Finish();
   result.seed = vr.seed;
+  if (options.kidnap_after_s >= 0.0) result.kidnap_jump_in = vr.kidnap_jump_in;
   return result;
 }
 

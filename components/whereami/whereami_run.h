@@ -54,6 +54,13 @@ struct RunOptions {
   // ends at the first localized pose.
   double kidnap_after_s = -1.0;
   double kidnap_jump_in = 0.0;
+  // Instead of kidnap_jump_in: a jump drawn uniformly over the middle 80 % of the ring's
+  // length from the run's seed (the start's stream is not touched).
+  bool kidnap_jump_random = false;
+  // Without a kidnap: once localized, keep travelling (a goal half the ring ahead) this far
+  // and watch the pose all the way (RunResult::false_losts, wrong_localized); 0: the run ends
+  // at the first localized pose.
+  double keep_going_ft = 0.0;
   // Record the sensed sequence and the map edges the camera passed (RunResult::trace).
   bool trace = false;
   // Record the base's true path (RunResult::path).
@@ -67,6 +74,23 @@ struct RunOptions {
 
 // One localized pose and how it compares with the truth.
 using Recovery = virtual_robot::PoseCheck;
+
+// A spell of a wrong pose published as LOCALIZED: how many edges the localizer sensed and
+// how far the robot travelled before it said LOST or named the right place (from the kidnap,
+// or from the first wrong sample), and how it ended.
+struct WrongSpell {
+  long edges = 0;
+  double distance_ft = 0.0;
+  std::string ended_by;  // "LOST", "RECOVERING", "corrected", or "run ended"
+};
+
+// A pose the localizer published with its confidence, and whether it named where the robot
+// truly was (sampled when the evidence changed: each sensed edge and each change of status).
+struct ConfidenceSample {
+  double confidence = 0.0;
+  bool localized = false;
+  bool correct = false;
+};
 
 // How a run ended. A run that touched a wall counts as a collision whatever else happened;
 // a run that could not be run (e.g. no possible start) as failed.
@@ -82,6 +106,17 @@ struct RunResult {
   bool lost_detected = false;       // the localizer turned LOST after the kidnap
   double lost_after_ft = 0.0;       // travelled from the kidnap to LOST
   std::optional<Recovery> second;   // recovered after the kidnap
+  double kidnap_jump_in = 0.0;      // how far the kidnap moved the robot along the ring
+  // After the kidnap: how long the old (now wrong) pose stayed LOCALIZED, and how many edges
+  // from the kidnap on the map shows alike at the old place and the new one (the first
+  // partial wall included): no localizer can tell them apart sooner than the edge after.
+  std::optional<WrongSpell> after_kidnap;
+  int kidnap_edges_alike = 0;
+  // Outside a kidnap's spell, once first localized: LOST said while the pose was right, and
+  // the spells of a wrong pose published as LOCALIZED.
+  int false_losts = 0;
+  std::vector<WrongSpell> wrong_localized;
+  std::vector<ConfidenceSample> confidences;
   int frames = 0;
   int doors_observed = 0;
   int collisions = 0;

@@ -54,9 +54,30 @@ TEST(WhereAmIRunTest, AKidnappedRobotIsNoticedAndRecovers) {
   const RunResult r = RunWhereAmI(SmallMapSetup(), o);
   ASSERT_TRUE(r.first.has_value()) << r.ended;
   EXPECT_TRUE(r.kidnapped);
-  EXPECT_TRUE(r.lost_detected);
+  // The old pose, wrong from the kidnap on, stops being LOCALIZED no later than two edges
+  // after the map first tells the old place from the new one.
+  ASSERT_TRUE(r.after_kidnap.has_value());
+  EXPECT_TRUE(r.after_kidnap->ended_by == "LOST" || r.after_kidnap->ended_by == "RECOVERING" ||
+              r.after_kidnap->ended_by == "corrected")
+      << r.after_kidnap->ended_by;
+  EXPECT_LE(r.after_kidnap->edges, r.kidnap_edges_alike + 2)
+      << r.after_kidnap->distance_ft << " ft";
   ASSERT_TRUE(r.second.has_value()) << r.ended;
   EXPECT_TRUE(r.second->correct) << "edge " << r.second->edge << ", truth " << r.second->truth_edge;
+}
+
+TEST(WhereAmIRunTest, APoseKeptWithoutAKidnapIsNeverDeclaredLost) {
+  RunOptions o;
+  o.seed = 5;
+  o.keep_going_ft = 200.0;
+  const RunResult r = RunWhereAmI(SmallMapSetup(), o);
+  ASSERT_TRUE(r.first.has_value()) << r.ended;
+  EXPECT_TRUE(r.first->correct);
+  EXPECT_NE(r.ended.find("kept going"), std::string::npos) << r.ended;
+  EXPECT_EQ(r.false_losts, 0);
+  for (const WrongSpell& w : r.wrong_localized) {
+    EXPECT_LE(w.edges, 2) << "a wrong pose published as LOCALIZED, ended by " << w.ended_by;
+  }
 }
 
 TEST(WhereAmIRunTest, AStartInAnOpenLobbyFollowsItsWallsOutWithoutTouchingAColumn) {

@@ -27,6 +27,9 @@ struct CameraModel {
   // Roll misalignment about the optical axis; the detector must tolerate up to 10° (§4.1.1).
   // Positive roll turns the scene counter-clockwise in the image.
   double roll_deg = 0.0;
+  // Pitch misalignment: positive tilts the optical axis down toward the floor. The text
+  // assumes a level camera (C1, §5.1); real mounts are off by a degree or more.
+  double pitch_deg = 0.0;
   // Radial distortion x_d = x_u (1 + k1 r_u^2) in normalised coordinates; k1 > 0 is the
   // pincushion of the 6 mm lens (§4.1.1). 0.10 makes a vertical edge at the side of the
   // image bow by about 6 px between the centre row and the top row (0.1 * 0.53 * 0.50^2 *
@@ -42,12 +45,15 @@ struct CameraModel {
 };
 
 // Lighting and sensor noise of one frame: out = gain * radiance * (1 + gradient * (u/W -
-// 1/2)) + offset + N(0, noise_stddev), clipped to 0..255. The gradient models uneven
-// hallway lighting along the image.
+// 1/2)) * (1 + vertical_gradient * (v/H - 1/2)) * (1 - vignetting * r^2) + offset +
+// N(0, noise_stddev), clipped to 0..255, with r the distance from the image centre over the
+// half diagonal. The gradients model uneven hallway lighting, the vignetting a webcam lens.
 struct Illumination {
   double gain = 1.0;
   double offset = 0.0;
   double gradient = 0.0;
+  double vertical_gradient = 0.0;
+  double vignetting = 0.0;
   double noise_stddev = 2.0;  // grey levels
 };
 
@@ -100,7 +106,7 @@ struct RenderedFrame {
 class CameraRenderer {
  public:
   // Throws std::invalid_argument on a bad model (FOV outside (1°, 170°), non-positive
-  // size, supersample < 1, |roll| >= 45°, k1 outside [-0.3, 0.5]).
+  // size, supersample < 1, |roll| >= 45°, |pitch| >= 30°, k1 outside [-0.3, 0.5]).
   explicit CameraRenderer(CameraModel model, RenderOptions options = {});
 
   const CameraModel& model() const { return model_; }
@@ -114,6 +120,13 @@ class CameraRenderer {
   // Column where the vertical line through p_W_in crosses the centre row, or nullopt when
   // the line is behind the camera.
   std::optional<double> ColumnAtCenterRow(const Pose2d& X_WC, const Eigen::Vector2d& p_W_in) const;
+  // The same, with the height (in) of the line's point seen there.
+  struct CenterRowCrossing {
+    double column_px = 0.0;
+    double height_in = 0.0;
+  };
+  std::optional<CenterRowCrossing> CrossCenterRow(const Pose2d& X_WC,
+                                                  const Eigen::Vector2d& p_W_in) const;
 
   RenderedFrame Render(const Scene& scene, const Pose2d& X_WR, const Illumination& light,
                        std::mt19937_64& rng) const;

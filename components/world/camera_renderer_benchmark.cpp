@@ -6,6 +6,7 @@
 
 #include "common/units.h"
 #include "world/camera_renderer.h"
+#include "world/realism.h"
 #include "world/sonar_ring.h"
 #include "world/world.h"
 
@@ -53,6 +54,33 @@ BENCHMARK(BM_RenderFrame)
     ->Args({3, 0, 1})
     ->Args({200, 0, 4})
     ->Unit(benchmark::kMillisecond);
+
+// The same drive with every realism feature on: lights, a glossy floor, boards, pilasters.
+void BM_RenderRealisticFrame(benchmark::State& state) {
+  const int doors = static_cast<int>(state.range(0));
+  std::vector<HallwayFeature> features;
+  for (int i = 0; i < doors; ++i) {
+    features.push_back(HallwayFeature::Wall(i % 2 == 0 ? 30 : 90));
+    features.push_back(HallwayFeature::Door(36));
+  }
+  features.push_back(HallwayFeature::Wall(60));
+  World w = MakeStraightHallway(features);
+  std::mt19937_64 rng(kSeed);
+  const RealismOptions realism = FullRealism();
+  ApplyRealism(realism, rng, &w);
+  const Scene scene(std::move(w));
+  const CameraRenderer renderer(DrawCamera(realism, CameraModel{}, rng));
+  double x = 30.0;
+  for (auto _ : state) {
+    const Illumination light = DrawIllumination(realism, {}, rng);
+    RenderedFrame frame = renderer.Render(scene, {x, 0.0, 0.0}, light, rng);
+    benchmark::DoNotOptimize(frame.image.data);
+    x += 6.24;
+    if (x > 96.0 * doors) x = 30.0;
+  }
+  state.counters["panels"] = static_cast<double>(scene.panels().size());
+}
+BENCHMARK(BM_RenderRealisticFrame)->Arg(3)->Arg(200)->Unit(benchmark::kMillisecond);
 
 void BM_SonarRing(benchmark::State& state) {
   const Scene scene = Hallway(static_cast<int>(state.range(0)));

@@ -256,7 +256,9 @@ void CompileWall(const World& world, int wi, std::vector<Panel>* out) {
 
   for (const WallDecoration& dec : world.decorations) {
     if (dec.wall_index != wi) continue;
-    panels.Add(dec.offset_in, dec.offset_in + dec.width_in, kDecorationOffsetIn, dec.bottom_in,
+    // Each layer a little further out, so overlapping marks never fight over depth.
+    panels.Add(dec.offset_in, dec.offset_in + dec.width_in,
+               kDecorationOffsetIn * (1.0 + 0.5 * std::max(0, dec.layer)), dec.bottom_in,
                dec.top_in, dec.intensity, wall.surface, PanelKind::kDecoration, -1, false);
   }
 }

@@ -71,6 +71,20 @@ struct WallDecoration {
   double bottom_in = 42.0;
   double top_in = 78.0;
   int intensity = 230;
+  // Stacking order of marks that overlap (a glazed board's pane sits on its frame): a mark
+  // of a higher layer is drawn in front of a lower one.
+  int layer = 0;
+};
+
+// A ceiling luminaire: a bright rectangle on the ceiling, centred at center_in, `length_in`
+// along `along` (unit) and `width_in` across it. Seen directly, and mirrored in a glossy
+// floor, it is the bright clutter at the top and bottom of hallway frames.
+struct CeilingLight {
+  Eigen::Vector2d center_in{0.0, 0.0};
+  Eigen::Vector2d along{1.0, 0.0};
+  double length_in = 48.0;
+  double width_in = 12.0;
+  int intensity = 250;
 };
 
 // The simulated building: walls with doors and decorations, plus the floor and ceiling
@@ -80,11 +94,15 @@ struct World {
   std::vector<WallSegment> walls;
   std::vector<DoorFeature> doors;
   std::vector<WallDecoration> decorations;
+  std::vector<CeilingLight> ceiling_lights;
   double ceiling_height_in = 96.0;
   int floor_intensity = 95;
   int ceiling_intensity = 205;
   double baseboard_height_in = 4.0;  // dark strip at the foot of walls; 0 for none
   int baseboard_intensity = 50;
+  // Share of the light reaching a glossy floor that it mirrors (0: matte). A waxed hallway
+  // floor shows the doors and the ceiling lights upside down below the baseboard.
+  double floor_reflectance = 0.0;
 };
 
 // Legal door classes in inches (§4.1.2, §6.1): 30, 32, 36, 40, 60 (30/30), 72 (36/36).

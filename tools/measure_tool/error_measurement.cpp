@@ -100,14 +100,26 @@ Setup Prepare(const std::vector<map::Map>& maps, const sensing::RobotConfig& rob
   for (double k : {-4.0, -3.0, -2.0, -1.0, 1.0, 2.0, 3.0, 4.0}) {
     if (config.max_roll_deg > 0.0) s.roll_deg.push_back(k / 4.0 * config.max_roll_deg);
   }
-  for (double roll : s.roll_deg) {
-    world::CameraModel camera = s.models.camera;
-    camera.roll_deg = roll;
-    s.renderers.push_back(std::make_unique<world::CameraRenderer>(camera));
+  if (config.realism.camera_misalignment) {
+    // Cameras as real ones are mounted, in place of the roll set.
+    s.roll_deg.clear();
+    std::mt19937_64 camera_rng(StreamSeed(config.seed, 1ull << 42));
+    for (int k = 0; k < kRealCameras; ++k) {
+      const world::CameraModel camera =
+          world::DrawCamera(config.realism, s.models.camera, camera_rng);
+      s.roll_deg.push_back(camera.roll_deg);
+      s.renderers.push_back(std::make_unique<world::CameraRenderer>(camera));
+    }
+  } else {
+    for (double roll : s.roll_deg) {
+      world::CameraModel camera = s.models.camera;
+      camera.roll_deg = roll;
+      s.renderers.push_back(std::make_unique<world::CameraRenderer>(camera));
+    }
   }
   s.sonar = std::make_unique<world::SonarRingSimulator>(s.models.sonar);
-  s.pipeline = std::make_unique<landmark::LandmarkPipeline>(robot, config.detector,
-                                                            config.estimator, config.casing);
+  s.pipeline = std::make_unique<landmark::LandmarkPipeline>(
+      robot, config.detector, config.estimator, config.casing, config.gate);
   for (std::size_t m = 0; m < maps.size(); ++m) {
     std::vector<RingWorld> rings;
     std::vector<double> weights;
@@ -121,11 +133,17 @@ Setup Prepare(const std::vector<map::Map>& maps, const sensing::RobotConfig& rob
       // The worlds have seeds of their own, apart from the frames' (index >= 2^40).
       std::mt19937_64 closed_rng(StreamSeed(config.seed, (1ull << 40) + m * 4096 + r));
       rw.geometry = world::BuildRingWorld(maps[m], r, options, closed_rng);
+      // The same clutter in the closed and the open world of a ring.
+      const std::uint64_t realism_seed = StreamSeed(config.seed, (1ull << 43) + m * 4096 + r);
+      std::mt19937_64 realism_rng(realism_seed);
+      world::ApplyRealism(config.realism, realism_rng, &rw.geometry.world);
       rw.closed_scene = std::make_unique<world::Scene>(rw.geometry.world);
       options.open_door_fraction = config.open_door_fraction;
       std::mt19937_64 open_rng(StreamSeed(config.seed, (1ull << 41) + m * 4096 + r));
-      rw.open_scene = std::make_unique<world::Scene>(
-          world::BuildRingWorld(maps[m], r, options, open_rng).world);
+      world::World open = world::BuildRingWorld(maps[m], r, options, open_rng).world;
+      realism_rng.seed(realism_seed);
+      world::ApplyRealism(config.realism, realism_rng, &open);
+      rw.open_scene = std::make_unique<world::Scene>(std::move(open));
       double length = 0.0;
       for (const world::MapEdgeGeometry& g : rw.geometry.edges) {
         if (g.door_index >= 0) rw.door_edges.push_back(rw.cumulative_in.size());
@@ -247,16 +265,19 @@ FrameDraw DrawFrame(const Setup& s, std::uint64_t index, std::mt19937_64& rng, F
           sign_s * (c.envelope_stare_deg + u_s * (c.outside_stare_deg - c.envelope_stare_deg));
     }
   }
-  if (s.roll_deg.size() > 1 && unit(rng) < 0.5) {
+  if (c.realism.camera_misalignment) {
+    draw.roll_index = std::uniform_int_distribution<std::size_t>(0, s.roll_deg.size() - 1)(rng);
+  } else if (s.roll_deg.size() > 1 && unit(rng) < 0.5) {
     draw.roll_index = std::uniform_int_distribution<std::size_t>(1, s.roll_deg.size() - 1)(rng);
   }
-  out.rolled = draw.roll_index != 0;
+  out.rolled = std::abs(s.roll_deg[draw.roll_index]) > 0.5;
   draw.light.gain = c.min_gain + unit(rng) * (c.max_gain - c.min_gain);
   draw.light.offset = c.min_offset + unit(rng) * (c.max_offset - c.min_offset);
   draw.light.gradient = (2.0 * unit(rng) - 1.0) * c.max_gradient;
   draw.light.noise_stddev = c.min_noise + unit(rng) * (c.max_noise - c.min_noise);
 
   out.aimed_at_door = unit(rng) < c.door_aim_share;
+  if (c.realism.illumination) draw.light = world::DrawIllumination(c.realism, draw.light, rng);
   return draw;
 }
 
@@ -342,6 +363,33 @@ void Score(const landmark::FrameOutcome& sensed, const std::vector<WholeDoor>& w
                                                : FrameResult::Outcome::kMissizedPositive;
 }
 
+// The jamb pairs offered against the whole doors in view.
+void ScorePairs(const landmark::FrameOutcome& sensed, const std::vector<WholeDoor>& whole,
+                FrameResult& out) {
+  out.pairs_offered = static_cast<int>(sensed.ranked.size());
+  out.pair_cap_hit = sensed.candidates > 0 && sensed.pairs_before_cap > sensed.candidates;
+  auto on_door = [&](const sensing::JambCandidate& c) {
+    for (const WholeDoor& w : whole) {
+      if (std::abs(c.footprints.lj_px - w.left) <= kJambTolerancePx &&
+          std::abs(c.footprints.rj_px - w.right) <= kJambTolerancePx) {
+        return true;
+      }
+    }
+    return false;
+  };
+  // The classifier's order: highest confidence first (the casing rule may promote one).
+  std::vector<const sensing::JambCandidate*> order;
+  for (const sensing::JambCandidate& c : sensed.ranked) order.push_back(&c);
+  std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) {
+    return a->confidence > b->confidence;
+  });
+  for (std::size_t k = 0; k < order.size() && k < 3; ++k) {
+    if (!on_door(*order[k])) continue;
+    out.top3_pair_on_door = true;
+    if (k == 0) out.top_pair_on_door = true;
+  }
+}
+
 FrameResult RunFrame(const Setup& s, std::uint64_t index) {
   std::mt19937_64 rng(StreamSeed(s.config->seed, index));
   FrameResult out;
@@ -361,10 +409,44 @@ FrameResult RunFrame(const Setup& s, std::uint64_t index) {
                                "mono8",  img.data, img.total()};
   const landmark::FrameOutcome sensed = s.pipeline->Process(view, scan);
   Score(sensed, whole, out);
+  ScorePairs(sensed, whole, out);
   return out;
 }
 
 }  // namespace
+
+void UseDetectorBeforeIssue17(MeasureConfig* config) {
+  vision::RibbonDetectorParams& d = config->detector;
+  d.confidence = vision::RibbonDetectorParams::Confidence::kEnergyShare;
+  d.appearance_rule = false;
+  d.outer_row_fraction = 0.75;
+  d.min_pair_width_px = 12.0;
+  d.max_pair_width_px = 1e9;
+  d.max_clump_width_px = 1 << 20;
+  config->gate.enabled = false;
+}
+
+void PairTally::Add(const FrameResult& r) {
+  if (r.outcome == FrameResult::Outcome::kDropped) return;
+  ++frames;
+  pairs += r.pairs_offered;
+  with_pairs += r.pairs_offered > 0;
+  capped += r.pair_cap_hit;
+  top_on_door += r.top_pair_on_door;
+  if (r.truth == FrameResult::Truth::kPositive) {
+    ++positives;
+    top_on_door_of_positives += r.top_pair_on_door;
+    top3_on_door += r.top3_pair_on_door;
+  } else {
+    ++negatives;
+    negatives_with_pairs += r.pairs_offered > 0;
+    negative_pairs += r.pairs_offered;
+  }
+}
+
+double PairTally::precision_pct() const { return Pct(top_on_door, with_pairs); }
+double PairTally::recall_pct() const { return Pct(top_on_door_of_positives, positives); }
+double PairTally::recall3_pct() const { return Pct(top3_on_door, positives); }
 
 double Tally::correct_pct() const { return Pct(tp + tn, frames()); }
 double Tally::tp_pct() const { return Pct(tp, positives()); }
@@ -415,6 +497,7 @@ Measurement MeasurePipeline(const std::vector<map::Map>& maps, const sensing::Ro
   m.per_map.resize(maps.size());
   for (const FrameResult& r : m.frames) {
     m.all.Add(r);
+    m.pairs.Add(r);
     m.per_map[r.map_index].Add(r);
     (r.in_envelope ? m.in_envelope : m.outside_envelope).Add(r);
     (r.rolled ? m.rolled : m.level).Add(r);
@@ -574,9 +657,32 @@ std::string Confusions(const Measurement& m) {
 
 }  // namespace
 
+// Jamb pairs against the renderer's truth, and false doors per wall frame.
+std::string PairReport(const Measurement& m) {
+  const PairTally& p = m.pairs;
+  std::string s = "\nJamb pairs (the candidates handed to the classifier; a hit: both jambs within ";
+  s += Fmt("%.0f px of a whole door's)\n", kJambTolerancePx);
+  s += Line("  precision of the first pair          %6.2f %%  (%ld of %ld frames with a pair)",
+            p.precision_pct(), p.top_on_door, p.with_pairs);
+  s += Line("  recall, first pair                   %6.2f %%  (%ld of %ld frames with a whole door)",
+            p.recall_pct(), p.top_on_door_of_positives, p.positives);
+  s += Line("  recall, first three pairs            %6.2f %%", p.recall3_pct());
+  s += Line("  frames with pairs                    %6.2f %%  (%.1f pairs a frame; %.2f %% at the cap)",
+            Pct(p.with_pairs, p.frames), p.frames > 0 ? double(p.pairs) / p.frames : 0.0,
+            Pct(p.capped, p.frames));
+  s += Line("  wall frames (no whole door) with pairs %5.2f %%  (%.2f pairs a wall frame)",
+            Pct(p.negatives_with_pairs, p.negatives),
+            p.negatives > 0 ? double(p.negative_pairs) / p.negatives : 0.0);
+  s += Line("  false doors per wall frame           %6.4f  (%ld of %ld)",
+            m.all.negatives() > 0 ? double(m.all.fp) / m.all.negatives() : 0.0, m.all.fp,
+            m.all.negatives());
+  return s;
+}
+
 std::string FormatReport(const Measurement& m) {
   std::string s = ReportHeader(m);
   s += Table610(m.all);
+  s += PairReport(m);
   s += Breakdown(m);
   s += Confusions(m);
   return s;

@@ -9,6 +9,7 @@
 #include "landmark/landmark_pipeline.h"
 #include "sensing/robot_config.h"
 #include "stickrep/map.h"
+#include "world/realism.h"
 
 namespace stickrep::measure {
 
@@ -53,11 +54,26 @@ struct MeasureConfig {
   // classes need them. The rest look at a uniform place along the ring.
   double door_aim_share = 0.5;
 
+  // The clutter of real hallways (world::RealismOptions): the scene features go into every
+  // ring's world; with camera_misalignment each frame takes one of kRealCameras drawn
+  // cameras (in place of the roll set), with illumination each frame draws its light from
+  // the realism bounds.
+  world::RealismOptions realism;
+
   // The pipeline under test: as the landmark process runs it unless changed.
   vision::RibbonDetectorParams detector;
   sensing::LandmarkEstimatorConfig estimator;
   landmark::CasingRule casing;
+  landmark::WidthGate gate;
 };
+
+// Cameras drawn for the misalignment realism (seeded from the run's seed).
+inline constexpr int kRealCameras = 9;
+
+// The detector and pipeline as they were before issue 17 (confidence as a share of the
+// frame's edge energy, no appearance rule, outer rows at 0.75, pairs from 12 px with no
+// upper bound, clumps unbounded, no width gate), for before/after measurements.
+void UseDetectorBeforeIssue17(MeasureConfig* config);
 
 // The legal door classes in the order of the reports: "30", "32", "36", "40", "30/30",
 // "36/36" (sensing::DoorClass order).
@@ -87,6 +103,26 @@ struct FrameResult {
   int true_class = -1;           // class of the whole door nearest the sensed one
   int sensed_class = -1;         // sensing::DoorClass as int, -1 if none
   double sensed_width_in = 0.0;
+  // Jamb pairs (the candidates handed to the classifier) against the whole doors in view:
+  // how many, whether the first / one of the first three has both jambs within 3 px of a
+  // whole door's, and whether the detector hit its pair cap.
+  int pairs_offered = 0;
+  bool top_pair_on_door = false;
+  bool top3_pair_on_door = false;
+  bool pair_cap_hit = false;
+};
+
+// Jamb-pair precision and recall over a set of frames (FrameResult's pair fields).
+struct PairTally {
+  long frames = 0, with_pairs = 0, capped = 0, pairs = 0;
+  long positives = 0, top_on_door = 0, top_on_door_of_positives = 0, top3_on_door = 0;
+  long negatives = 0, negatives_with_pairs = 0, negative_pairs = 0;
+  void Add(const FrameResult& r);
+  // Of frames with a pair, share whose first pair is a whole door's jambs.
+  double precision_pct() const;
+  // Of frames with a whole door, share whose first (first three) pair is its jambs.
+  double recall_pct() const;
+  double recall3_pct() const;
 };
 
 // Counts of the five outcomes over a set of frames, and the Table 6.10 rates.
@@ -112,6 +148,7 @@ struct Measurement {
   std::vector<FrameResult> frames;  // in frame order
   Tally all, in_envelope, outside_envelope, rolled, level, open_worlds, closed_worlds;
   std::vector<Tally> per_map;
+  PairTally pairs;
   // Confusions: [true class][sensed class] over mis-sized positives, and the classes of
   // false positives.
   std::array<std::array<long, kClassCount>, kClassCount> missized_to{};

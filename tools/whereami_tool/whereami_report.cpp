@@ -14,6 +14,7 @@
 #include "common/worker_pool.h"
 #include "localizer/localizer_config.h"
 #include "study_tool/study_report.h"
+#include "whereami_tool/integrity_report.h"
 #include "stickrep/hallway_view.h"
 #include "plot/map_render.h"
 
@@ -86,6 +87,8 @@ std::vector<RunResult> RunSeeds(const RunSetup& setup, const ToolOptions& option
         run.max_sim_s = options.max_sim_s;
         run.kidnap_after_s = options.kidnap_after_s;
         run.kidnap_jump_in = options.kidnap_jump_in;
+        run.kidnap_jump_random = options.kidnap_jump_random;
+        run.keep_going_ft = options.keep_going_ft;
         run.trace = options.trace;
         run.record_path = !options.path_png.empty();
         run.measure_ft = options.measure_ft;
@@ -236,9 +239,13 @@ void PrintRunsHeader(const RunSetup& setup, const ToolOptions& options, std::ost
       setup.virtual_robot.start_heading_error_max_deg,
       setup.localizer.localizer.method == localizer::MatchMethod::kBayes ? "bayes"
                                                                          : "deterministic",
-      options.kidnap_after_s >= 0.0 ? fmt::format(", kidnapped {:g} s after the pose by {:g} in",
-                                                  options.kidnap_after_s, options.kidnap_jump_in)
-                                    : "");
+      options.kidnap_after_s < 0.0 ? std::string()
+      : options.kidnap_jump_random
+          ? fmt::format(", kidnapped {:g} s after the pose by a jump drawn from each seed over "
+                        "the middle 80 % of the ring",
+                        options.kidnap_after_s)
+          : fmt::format(", kidnapped {:g} s after the pose by {:g} in", options.kidnap_after_s,
+                        options.kidnap_jump_in));
 }
 
 // One run's lines, and its path drawn over the map when asked for.
@@ -250,10 +257,22 @@ void PrintRun(const RunResult& r, const RunSetup& setup, const ToolOptions& opti
   }
   out << fmt::format("            {}: {}", ToString(r.ending()), Describe(r.first));
   if (r.kidnapped) {
-    out << fmt::format("\n            kidnapped: {}; then {}",
+    out << fmt::format("\n            kidnapped {:.0f} in along the ring: {}{}; then {}",
+                       r.kidnap_jump_in,
                        r.lost_detected ? fmt::format("LOST after {:.1f} ft", r.lost_after_ft)
                                        : std::string("never LOST"),
+                       r.after_kidnap ? fmt::format(" (wrong pose LOCALIZED for {} edges, {:.1f} "
+                                                    "ft, ended by {}; the map alike for {} edges)",
+                                                    r.after_kidnap->edges,
+                                                    r.after_kidnap->distance_ft,
+                                                    r.after_kidnap->ended_by,
+                                                    r.kidnap_edges_alike)
+                                      : std::string(),
                        Describe(r.second));
+  }
+  if (r.false_losts > 0 || !r.wrong_localized.empty()) {
+    out << fmt::format("\n            {} LOST while right, {} spells of a wrong LOCALIZED pose",
+                       r.false_losts, r.wrong_localized.size());
   }
   out << fmt::format(
       "\n            {} frames, {} doors seen, {} collisions, envelope max "
@@ -286,6 +305,14 @@ nlohmann::json RunJson(const RunResult& r) {
           {"lost_detected", r.lost_detected},
           {"lost_after_ft", r.lost_after_ft},
           {"second", ToJson(r.second)},
+          {"kidnap_jump_in", r.kidnap_jump_in},
+          {"kidnap_edges_alike", r.kidnap_edges_alike},
+          {"after_kidnap", r.after_kidnap ? nlohmann::json{{"edges", r.after_kidnap->edges},
+                                                           {"distance_ft", r.after_kidnap->distance_ft},
+                                                           {"ended_by", r.after_kidnap->ended_by}}
+                                          : nlohmann::json(nullptr)},
+          {"false_losts", r.false_losts},
+          {"wrong_localized_spells", r.wrong_localized.size()},
           {"frames", r.frames},
           {"doors_observed", r.doors_observed},
           {"collisions", r.collisions},
@@ -334,19 +361,19 @@ void PrintSummary(const Summary& s, const RunSetup& setup, std::ostream& out) {
 }
 
 void WriteRunsJson(const std::string& path, const RunSetup& setup, const ToolOptions& options,
-                   const nlohmann::json& runs, const Summary& s) {
+                   const nlohmann::json& runs, const Summary& s, const nlohmann::json& more) {
   std::ofstream f(path);
   if (!f) throw InputError(path, 0, "--json", "cannot be written");
-  f << nlohmann::json{{"map", setup.map->info().name},
-                      {"first_seed", options.first_seed},
-                      {"runs", runs},
-                      {"correct", s.correct},
-                      {"localized", s.localized},
-                      {"mean_edges", s.mean_edges},
-                      {"mean_distance_ft", s.mean_distance_ft},
-                      {"mean_time_s", s.mean_time_s}}
-           .dump(2)
-    << "\n";
+  nlohmann::json j{{"map", setup.map->info().name},
+                   {"first_seed", options.first_seed},
+                   {"runs", runs},
+                   {"correct", s.correct},
+                   {"localized", s.localized},
+                   {"mean_edges", s.mean_edges},
+                   {"mean_distance_ft", s.mean_distance_ft},
+                   {"mean_time_s", s.mean_time_s}};
+  j.update(more);
+  f << j.dump(2) << "\n";
 }
 
 }  // namespace
@@ -364,7 +391,16 @@ int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
     }
     const Summary s = Summarize(results);
     PrintSummary(s, setup, out);
-    if (!options.json_path.empty()) WriteRunsJson(options.json_path, setup, options, runs, s);
+    const IntegritySummary integrity = SummarizeIntegrity(results);
+    if (options.kidnap_after_s >= 0.0 || options.keep_going_ft > 0.0) {
+      PrintIntegrity(integrity, out);
+    }
+    const Reliability reliability = ReliabilityOf(results);
+    if (options.reliability) PrintReliability(reliability, out);
+    if (!options.json_path.empty()) {
+      WriteRunsJson(options.json_path, setup, options, runs, s,
+                    {{"integrity", ToJson(integrity)}, {"reliability", ToJson(reliability)}});
+    }
     return 0;
   } catch (const InputError& e) {
     err << e.what() << "\n";

@@ -23,6 +23,9 @@ struct ToolOptions {
   double max_sim_s = 600.0;
   double kidnap_after_s = -1.0;
   double kidnap_jump_in = 2500.0;
+  bool kidnap_jump_random = false;  // RunOptions::kidnap_jump_random
+  double keep_going_ft = 0.0;       // RunOptions::keep_going_ft
+  bool reliability = false;         // print the published confidence's reliability table
   std::string json_path;           // empty: none
   bool trace = false;              // print each run's sensed and true edge sequences
   // Draw each run's true path over the map: <path_png>_seed<N>.png (empty: none).

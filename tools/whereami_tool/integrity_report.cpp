@@ -1,0 +1,169 @@
+#include "whereami_tool/integrity_report.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+#include "common/quantile.h"
+
+namespace stickrep::whereami {
+
+namespace {
+
+// Confidence bins, finer toward certainty where the localizer decides.
+constexpr double kBinEdges[] = {0.0, 0.5, 0.8, 0.9, 0.95, 0.99, 0.995, 0.999, 1.0 + 1e-12};
+
+std::vector<ReliabilityBin> Bin(const std::vector<ConfidenceSample>& samples) {
+  std::vector<ReliabilityBin> bins;
+  for (std::size_t i = 0; i + 1 < std::size(kBinEdges); ++i) {
+    bins.push_back({kBinEdges[i], std::min(1.0, kBinEdges[i + 1]), 0, 0.0, 0.0});
+  }
+  for (const ConfidenceSample& c : samples) {
+    for (std::size_t i = 0; i + 1 < std::size(kBinEdges); ++i) {
+      if (c.confidence >= kBinEdges[i] && c.confidence < kBinEdges[i + 1]) {
+        ReliabilityBin& b = bins[i];
+        ++b.n;
+        b.mean_confidence += c.confidence;
+        b.correct += c.correct ? 1.0 : 0.0;
+        break;
+      }
+    }
+  }
+  for (ReliabilityBin& b : bins) {
+    if (b.n == 0) continue;
+    b.mean_confidence /= b.n;
+    b.correct /= b.n;
+  }
+  return bins;
+}
+
+void PrintBins(const std::vector<ReliabilityBin>& bins, std::ostream& out) {
+  out << fmt::format("  {:<16} {:>7} {:>16} {:>14}\n", "confidence", "poses", "mean confidence",
+                     "correct");
+  for (const ReliabilityBin& b : bins) {
+    if (b.n == 0) continue;
+    out << fmt::format("  [{:.3f}, {:.3f}{} {:>7} {:>16.4f} {:>14.4f}\n", b.lo, b.hi,
+                       b.hi >= 1.0 ? "]" : ")", b.n, b.mean_confidence, b.correct);
+  }
+}
+
+nlohmann::json ToJson(const Spread& s) {
+  return {{"n", s.n}, {"median", s.median}, {"p95", s.p95}, {"max", s.max}};
+}
+
+nlohmann::json ToJson(const std::vector<ReliabilityBin>& bins) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const ReliabilityBin& b : bins) {
+    j.push_back({{"lo", b.lo}, {"hi", b.hi}, {"n", b.n}, {"mean_confidence", b.mean_confidence},
+                 {"correct", b.correct}});
+  }
+  return j;
+}
+
+}  // namespace
+
+Spread SpreadOf(const std::vector<double>& values) {
+  Spread s;
+  s.n = static_cast<int>(values.size());
+  if (values.empty()) return s;
+  s.median = Median(values);
+  s.p95 = Quantile(values, 0.95);
+  s.max = *std::max_element(values.begin(), values.end());
+  return s;
+}
+
+IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
+  IntegritySummary s;
+  std::vector<double> edges, feet, wrong_edges, alike;
+  std::map<std::string, int> ended_by;
+  for (const RunResult& r : results) {
+    if (r.first) ++s.watched_runs;
+    s.false_losts += r.false_losts;
+    s.runs_with_false_lost += r.false_losts > 0;
+    for (const WrongSpell& w : r.wrong_localized) {
+      ++s.wrong_spells;
+      wrong_edges.push_back(static_cast<double>(w.edges));
+    }
+    if (!r.after_kidnap || r.after_kidnap->ended_by == "not localized at the kidnap") continue;
+    ++s.kidnaps;
+    edges.push_back(static_cast<double>(r.after_kidnap->edges));
+    alike.push_back(r.kidnap_edges_alike);
+    s.within_alike_plus_2 += r.after_kidnap->edges <= r.kidnap_edges_alike + 2;
+    feet.push_back(r.after_kidnap->distance_ft);
+    ++ended_by[r.after_kidnap->ended_by];
+  }
+  s.edges = SpreadOf(edges);
+  s.feet = SpreadOf(feet);
+  s.wrong_spell_edges = SpreadOf(wrong_edges);
+  s.alike = SpreadOf(alike);
+  s.ended_by.assign(ended_by.begin(), ended_by.end());
+  return s;
+}
+
+void PrintIntegrity(const IntegritySummary& s, std::ostream& out) {
+  out << "\nintegrity (every published pose judged against the truth, from the first pose on):\n";
+  if (s.kidnaps > 0) {
+    std::string ends;
+    for (const auto& [how, n] : s.ended_by) ends += fmt::format("{}{} {}", ends.empty() ? "" : ", ", n, how);
+    out << fmt::format(
+        "  after {} kidnaps the wrong pose stayed LOCALIZED for sensed edges median {:.0f}, "
+        "95th percentile {:.0f}, max {:.0f}; feet median {:.1f}, 95th percentile {:.1f}, max "
+        "{:.1f}; ended by: {}\n",
+        s.kidnaps, s.edges.median, s.edges.p95, s.edges.max, s.feet.median, s.feet.p95,
+        s.feet.max, ends);
+    out << fmt::format(
+        "  the map shows the old place and the new alike for edges median {:.0f}, 95th "
+        "percentile {:.0f}, max {:.0f}; {} of {} spells ended within 2 edges of that\n",
+        s.alike.median, s.alike.p95, s.alike.max, s.within_alike_plus_2, s.kidnaps);
+  }
+  out << fmt::format(
+      "  {} runs watched: {} LOST said while the pose was right ({} runs); {} other spells of a "
+      "wrong LOCALIZED pose{}\n",
+      s.watched_runs, s.false_losts, s.runs_with_false_lost, s.wrong_spells,
+      s.wrong_spells > 0 ? fmt::format(" (sensed edges median {:.0f}, max {:.0f})",
+                                       s.wrong_spell_edges.median, s.wrong_spell_edges.max)
+                         : std::string());
+}
+
+Reliability ReliabilityOf(const std::vector<RunResult>& results) {
+  std::vector<ConfidenceSample> all, localized;
+  for (const RunResult& r : results) {
+    for (const ConfidenceSample& c : r.confidences) {
+      all.push_back(c);
+      if (c.localized) localized.push_back(c);
+    }
+  }
+  return {Bin(all), Bin(localized)};
+}
+
+void PrintReliability(const Reliability& r, std::ostream& out) {
+  out << "\nreliability: poses published with a confidence, and the share that named the true "
+         "place (a sample at each sensed edge and each change of status)\n";
+  out << " every pose with a candidate:\n";
+  PrintBins(r.all, out);
+  out << " poses published as LOCALIZED:\n";
+  PrintBins(r.localized, out);
+}
+
+nlohmann::json ToJson(const IntegritySummary& s) {
+  nlohmann::json ended = nlohmann::json::object();
+  for (const auto& [how, n] : s.ended_by) ended[how] = n;
+  return {{"kidnaps", s.kidnaps},
+          {"wrong_pose_edges", ToJson(s.edges)},
+          {"wrong_pose_feet", ToJson(s.feet)},
+          {"edges_alike", ToJson(s.alike)},
+          {"within_alike_plus_2", s.within_alike_plus_2},
+          {"ended_by", ended},
+          {"watched_runs", s.watched_runs},
+          {"false_losts", s.false_losts},
+          {"runs_with_false_lost", s.runs_with_false_lost},
+          {"wrong_spells", s.wrong_spells},
+          {"wrong_spell_edges", ToJson(s.wrong_spell_edges)}};
+}
+
+nlohmann::json ToJson(const Reliability& r) {
+  return {{"all", ToJson(r.all)}, {"localized", ToJson(r.localized)}};
+}
+
+}  // namespace stickrep::whereami

@@ -1,0 +1,56 @@
+#pragma once
+
+// Pose integrity over many Where-am-I runs: how long a wrong pose stayed LOCALIZED after a
+// kidnap (in sensed edges and feet), the LOSTs said while the pose was right, and whether
+// the published confidence means what it says (a reliability table).
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "whereami/whereami_run.h"
+
+namespace stickrep::whereami {
+
+struct Spread {
+  int n = 0;
+  double median = 0.0, p95 = 0.0, max = 0.0;
+};
+Spread SpreadOf(const std::vector<double>& values);
+
+struct IntegritySummary {
+  int kidnaps = 0;             // runs kidnapped while LOCALIZED
+  Spread edges, feet;          // of the wrong pose's spell after each such kidnap
+  Spread alike;                // edges the map shows alike at the old and the new place
+  int within_alike_plus_2 = 0; // spells no longer than the edges alike plus 2
+  std::vector<std::pair<std::string, int>> ended_by;  // how those spells ended
+  int watched_runs = 0;        // runs watched after their first pose
+  int false_losts = 0;         // LOST said with no kidnap to notice
+  int runs_with_false_lost = 0;
+  int wrong_spells = 0;        // wrong LOCALIZED spells outside a kidnap's
+  Spread wrong_spell_edges;
+};
+IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results);
+void PrintIntegrity(const IntegritySummary& s, std::ostream& out);
+
+// Published poses by the confidence they came with: how many, their mean confidence and the
+// share that named the true place.
+struct ReliabilityBin {
+  double lo = 0.0, hi = 1.0;
+  int n = 0;
+  double mean_confidence = 0.0;
+  double correct = 0.0;  // share
+};
+struct Reliability {
+  std::vector<ReliabilityBin> all;        // every pose sample with a candidate
+  std::vector<ReliabilityBin> localized;  // those published as LOCALIZED
+};
+Reliability ReliabilityOf(const std::vector<RunResult>& results);
+void PrintReliability(const Reliability& r, std::ostream& out);
+
+nlohmann::json ToJson(const IntegritySummary& s);
+nlohmann::json ToJson(const Reliability& r);
+
+}  // namespace stickrep::whereami
