@@ -202,12 +202,13 @@ void SecuredStackTest::SetUpTestSuite() {
       *s.observer, s.executor, "sim/ground_truth",
       [](const msgs::GroundTruth& g) { g_stack->collisions = g.collisions(); });
 
-  // The all-in-one graph on the small map, the mission holding at the recovered pose.
+  // The all-in-one graph on the small map, the mission holding at the recovered pose. At
+  // real time: at twice real time, with the realistic camera frames, on a loaded 2-core
+  // machine, not one encrypted 250 kB frame reached its reader (docs/security.md).
   const std::string system = SmallMapSystem("security_system.yaml");
   const std::string robot = WriteTempFile(
-      "security_vr.yaml", ConfigWith("virtual_robot.yaml", {{"seed", "2"},
-                                                            {"real_time_factor", "2"},
-                                                            {"summary_png", "\"\""}}));
+      "security_vr.yaml",
+      ConfigWith("virtual_robot.yaml", {{"seed", "2"}, {"summary_png", "\"\""}}));
   std::string graph =
       "launch:\n  name: secured all-in-one\n  max_duration_s: 900\n"
       "  common_args: [--system, \"" + system + "\"]\n  processes:\n"
