@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   app.add_flag("--realism", realism,
                "cluttered, real-looking hallways: every world::RealismOptions feature on");
   app.add_flag("--detector-before", before,
-               "the detector and pipeline as before issue 17 (for before/after figures)");
+               "the detector and pipeline as first built (for before/after figures)");
   app.add_option("--min-confidence", config.estimator.min_confidence,
                  "candidates below this detector confidence are not classified (4.1.2)")
       ->check(CLI::Range(0.0, 1.0))

@@ -32,7 +32,10 @@ Localizer::Localizer(const map::Map& map, LocalizerConfig config)
       assembler_(config.assembler),
       tracker_(map, config.tracker) {
   if (config_.method == MatchMethod::kBayes) {
-    bayes_ = std::make_unique<recovery::BayesLocalizer>(index_, config_.bayes);
+    recovery::BayesModel model = config_.bayes;
+    kidnap_per_edge_ = model.settings.kidnap_per_edge;
+    model.settings.kidnap_per_edge = 0.0;  // from the first pose on (StartTracking)
+    bayes_ = std::make_unique<recovery::BayesLocalizer>(index_, model);
   }
   estimate_.message = "waiting for the first edge";
 }
@@ -80,6 +83,8 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
 }
 
 void Localizer::StartTracking(double odometer_in) {
+  // While a pose is held the filter allows for a kidnap before every edge.
+  if (bayes_) bayes_->SetKidnapShare(kidnap_per_edge_);
   const Hypothesis& h = estimate_.hypotheses.front();
   tracker_.Start(TrackedPose{h.ring, h.edge, h.dir, h.offset_in}, odometer_in,
                  assembler_.travel_direction());
@@ -87,7 +92,10 @@ void Localizer::StartTracking(double odometer_in) {
 
 void Localizer::ResetRecovery() {
   matcher_.Reset();
-  if (bayes_) bayes_->Reset();
+  if (bayes_) {
+    bayes_->Reset();
+    bayes_->SetKidnapShare(0.0);
+  }
   assembler_.Restart();
   recovery_edges_ = 0;
 }
@@ -156,6 +164,7 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
 void Localizer::LeaveLocalized(double odometer_in, Status status, const std::string& why) {
   if (status == Status::kLost) losses_++;
   tracker_.Stop(why);
+  bayes_->SetKidnapShare(0.0);
   recovery_edges_ = 0;
   was_localized_ = false;
   Rebuild(odometer_in, why);

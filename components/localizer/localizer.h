@@ -134,6 +134,7 @@ class Localizer {
   std::uint64_t losses_ = 0;
   std::uint64_t edges_total_ = 0;
   int recovery_edges_ = 0;  // edges weighed since the current recovery began
+  double kidnap_per_edge_ = 0.0;  // the filter's kidnap share while a pose is held
   bool was_localized_ = false;
 };
 

@@ -86,6 +86,10 @@ class BayesLocalizer {
   int edges() const { return edges_; }
   std::uint64_t rejected() const { return rejected_; }
   const BayesModel& model() const { return model_; }
+  // The share of the belief that starts again from the prior before each edge
+  // (BayesSettings::kidnap_per_edge): a localizer turns it on while it holds a pose and off
+  // while it recovers one (a share held back caps the posterior below 1 - share).
+  void SetKidnapShare(double share) { model_.settings.kidnap_per_edge = share; }
 
  private:
   static int State(int g, int dir) { return 2 * g + (dir > 0 ? 0 : 1); }

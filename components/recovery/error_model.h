@@ -140,7 +140,8 @@ struct BayesSettings {
   // The probability that the robot was carried anywhere on the floor (kidnapped, or its
   // odometry lost beyond repair) before a sensed edge: that share of the belief starts again
   // from the prior at every edge, so belief held at a wrong place drains to the right one as
-  // the evidence against it comes. 0: never (the study's runs).
+  // the evidence against it comes. 0: never (the study's runs). The localizer applies it
+  // only while it holds a pose (BayesLocalizer::SetKidnapShare).
   double kidnap_per_edge = 0.0;
 };
 

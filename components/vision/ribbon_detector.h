@@ -47,7 +47,7 @@ struct RibbonDetectorParams {
   // at the sonar range, and still between 8 and 72 in when the door is twice as far as the
   // range says (a coaxial echo off a nearer object, a camera looking down the hallway).
   // Rows at 0.75 landed on the ceiling light strips and the floor's reflections in real
-  // hallway frames (issue 17), and on the baseboard of a door farther than the range.
+  // hallway frames, and on the baseboard of a door farther than the range.
   double outer_row_fraction = 0.45;
 
   // Step (2), "thresholding to pass top 5%": the level is the (1 - fraction) quantile of
@@ -85,7 +85,7 @@ struct RibbonDetectorParams {
   //  kAbsolute: from the edges' own contrast in grey levels, their persistence over the
   //    processed rows and the pair's appearance; comparable across frames.
   //  kEnergyShare: the geometric mean of the two footprints' shares of the frame's edge
-  //    energy, times persistence and the polarity factor (before issue 17: a door-free frame
+  //    energy, times persistence and the polarity factor (the first detector: a door-free frame
   //    of posters scored above real doors, because a share is relative to its own frame).
   enum class Confidence { kAbsolute, kEnergyShare };
   // kAbsolute: an edge rolled by up to this much (§4.1.1: 10°) crosses a processed row

@@ -1,4 +1,4 @@
-// The detector on cluttered renders (issue 17): light strips between dark doors, posters,
+// The detector on cluttered renders: light strips between dark doors, posters,
 // oblique narrow doors, full-frame clumping through floor reflections.
 #include <gtest/gtest.h>
 

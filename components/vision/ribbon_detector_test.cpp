@@ -74,7 +74,7 @@ TEST(SampledRowsTest, BeyondSixFeetOuterRowsMoveInAsOneOverRange) {
 
 TEST(SampledRowsTest, TheOuterRowsStayOnADoorTwiceAsFarAsTheRange) {
   // A door 80 in tall seen from a camera 40 in up: at twice the range the rows must still
-  // cut it above a 6 in baseboard and below its top (issue 17: rows on the floor's
+  // cut it above a 6 in baseboard and below its top (real frames: rows on the floor's
   // reflections and the ceiling lights when the range was off).
   const RibbonDetector detector;
   const double f = 256.0 / std::tan(DegToRad(55.817) / 2.0);

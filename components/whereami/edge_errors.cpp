@@ -149,16 +149,15 @@ std::vector<Passage> Passages(const std::vector<TruthSample>& truth) {
 
 }  // namespace
 
-EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
-                                 const std::vector<map::SensedEdge>& sensed,
-                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
-                                 const std::vector<TruthSample>& truth, double from_in,
-                                 double to_in) {
-  EdgeErrorCounts c;
-  const double lo = std::min(from_in, to_in), hi = std::max(from_in, to_in);
-  const std::vector<Passage> passed = Passages(truth);
-  // Sensed doors by the true edge their centre lay on.
-  std::map<int, std::vector<std::size_t>> doors_on;  // passage index -> sensed indices
+namespace {
+
+// Sensed doors by the passage their centre lay on (passage index -> sensed indices), for the
+// doors centred within [lo, hi].
+std::map<int, std::vector<std::size_t>> DoorsByPassage(
+    const std::vector<map::SensedEdge>& sensed,
+    const std::vector<localizer::EdgeAssembler::Span>& spans, const std::vector<Passage>& passed,
+    double lo, double hi) {
+  std::map<int, std::vector<std::size_t>> doors_on;
   for (std::size_t i = 0; i < sensed.size() && i < spans.size(); ++i) {
     if (!map::IsDoorCode(sensed[i].code)) continue;
     const double centre = 0.5 * (spans[i].from_in + spans[i].to_in);
@@ -172,7 +171,39 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       }
     }
   }
-  // The class each passage's door was sensed with (for wall length checks).
+  return doors_on;
+}
+
+// Walls between two correctly sensed doors: the sensed wall right after the first, against
+// the map's length.
+void CountWallErrors(const map::Ring& view_ring, const std::vector<map::SensedEdge>& sensed,
+                     const std::vector<Passage>& passed,
+                     const std::vector<std::optional<std::size_t>>& matched, EdgeErrorCounts* c) {
+  for (std::size_t p = 0; p + 2 < passed.size(); ++p) {
+    if (!matched[p] || !matched[p + 2]) continue;
+    const map::Edge& wall = view_ring.edges[passed[p + 1].edge];
+    const std::size_t next = *matched[p] + 1;
+    if (!wall.IsWall() || next >= sensed.size() || next + 1 != *matched[p + 2] ||
+        sensed[next].code != map::kWallCode) {
+      continue;
+    }
+    c->wall_error_in.push_back(sensed[next].metric_in - wall.metric_in);
+  }
+}
+
+}  // namespace
+
+EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
+                                 const std::vector<map::SensedEdge>& sensed,
+                                 const std::vector<localizer::EdgeAssembler::Span>& spans,
+                                 const std::vector<TruthSample>& truth, double from_in,
+                                 double to_in) {
+  EdgeErrorCounts c;
+  const double lo = std::min(from_in, to_in), hi = std::max(from_in, to_in);
+  const std::vector<Passage> passed = Passages(truth);
+  const std::map<int, std::vector<std::size_t>> doors_on =
+      DoorsByPassage(sensed, spans, passed, lo, hi);
+  // The sensed door each passage's door was matched with (for wall length checks).
   std::vector<std::optional<std::size_t>> matched(passed.size());
   std::vector<int> passed_edges;
   for (const Passage& q : passed) passed_edges.push_back(q.edge);
@@ -225,17 +256,7 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       }
     }
   }
-  // Walls between two correctly sensed doors: the sensed wall right after the first.
-  for (std::size_t p = 0; p + 2 < passed.size(); ++p) {
-    if (!matched[p] || !matched[p + 2]) continue;
-    const map::Edge& wall = view_ring.edges[passed[p + 1].edge];
-    const std::size_t next = *matched[p] + 1;
-    if (!wall.IsWall() || next >= sensed.size() || next + 1 != *matched[p + 2] ||
-        sensed[next].code != map::kWallCode) {
-      continue;
-    }
-    c.wall_error_in.push_back(sensed[next].metric_in - wall.metric_in);
-  }
+  CountWallErrors(view_ring, sensed, passed, matched, &c);
   return c;
 }
 

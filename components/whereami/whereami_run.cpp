@@ -128,6 +128,7 @@ class Run {
   long spell_edges_ = 0;
   double spell_in_ = 0.0;
   message::LocalizationStatus last_status_ = message::LocalizationStatus::kRecovering;
+  bool last_localized_right_ = false;  // the last pose watched was LOCALIZED and right
   long last_sample_edges_ = -1;
   bool kidnap_seen_ = false;
   // The place held at the kidnap and the true one (view edges), until the robot has moved
@@ -227,8 +228,11 @@ void Run::Watch(const message::LocalizationPose& p) {
   last_sample_edges_ = edges;
   const bool turned_lost =
       p.status == message::LocalizationStatus::kLost && last_status_ != p.status;
+  const bool left_right_pose = last_localized_right_ && !localized;
+  last_localized_right_ = localized && correct;
   last_status_ = p.status;
   if (!result_.first) return;  // watched from the first pose on
+  if (left_right_pose && (!robot_.kidnapped() || result_.second)) ++result_.right_poses_given_up;
   if (spell_) {
     if (!localized || correct) {
       CloseSpell(localized ? "corrected" : turned_lost ? "LOST" : "RECOVERING");

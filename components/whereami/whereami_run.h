@@ -115,6 +115,8 @@ struct RunResult {
   // Outside a kidnap's spell, once first localized: LOST said while the pose was right, and
   // the spells of a wrong pose published as LOCALIZED.
   int false_losts = 0;
+  // Outside a kidnap's spell: a right LOCALIZED pose given up (to RECOVERING or LOST).
+  int right_poses_given_up = 0;
   std::vector<WrongSpell> wrong_localized;
   std::vector<ConfidenceSample> confidences;
   int frames = 0;

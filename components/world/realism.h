@@ -7,7 +7,7 @@
 
 namespace stickrep::world {
 
-// The clutter of real hallway frames that a clean render lacks (issue 17: real webcam
+// The clutter of real hallway frames that a clean render lacks (real webcam
 // frames of hallways with doors). Each feature is a switch; every random choice comes from
 // the caller's seeded generator, so a seed gives the same building, camera and light.
 // Values not in the text are marked as ours.

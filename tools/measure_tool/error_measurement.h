@@ -70,7 +70,7 @@ struct MeasureConfig {
 // Cameras drawn for the misalignment realism (seeded from the run's seed).
 inline constexpr int kRealCameras = 9;
 
-// The detector and pipeline as they were before issue 17 (confidence as a share of the
+// The detector and pipeline as they were first built (confidence as a share of the
 // frame's edge energy, no appearance rule, outer rows at 0.75, pairs from 12 px with no
 // upper bound, clumps unbounded, no width gate), for before/after measurements.
 void UseDetectorBeforeIssue17(MeasureConfig* config);

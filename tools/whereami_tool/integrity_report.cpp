@@ -80,6 +80,7 @@ IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
   for (const RunResult& r : results) {
     if (r.first) ++s.watched_runs;
     s.false_losts += r.false_losts;
+    s.right_poses_given_up += r.right_poses_given_up;
     s.runs_with_false_lost += r.false_losts > 0;
     for (const WrongSpell& w : r.wrong_localized) {
       ++s.wrong_spells;
@@ -118,9 +119,10 @@ void PrintIntegrity(const IntegritySummary& s, std::ostream& out) {
         s.alike.median, s.alike.p95, s.alike.max, s.within_alike_plus_2, s.kidnaps);
   }
   out << fmt::format(
-      "  {} runs watched: {} LOST said while the pose was right ({} runs); {} other spells of a "
-      "wrong LOCALIZED pose{}\n",
-      s.watched_runs, s.false_losts, s.runs_with_false_lost, s.wrong_spells,
+      "  {} runs watched: {} LOST said while the pose was right ({} runs); {} right poses given "
+      "up (to RECOVERING or LOST); {} other spells of a wrong LOCALIZED pose{}\n",
+      s.watched_runs, s.false_losts, s.runs_with_false_lost, s.right_poses_given_up,
+      s.wrong_spells,
       s.wrong_spells > 0 ? fmt::format(" (sensed edges median {:.0f}, max {:.0f})",
                                        s.wrong_spell_edges.median, s.wrong_spell_edges.max)
                          : std::string());
@@ -157,6 +159,7 @@ nlohmann::json ToJson(const IntegritySummary& s) {
           {"ended_by", ended},
           {"watched_runs", s.watched_runs},
           {"false_losts", s.false_losts},
+          {"right_poses_given_up", s.right_poses_given_up},
           {"runs_with_false_lost", s.runs_with_false_lost},
           {"wrong_spells", s.wrong_spells},
           {"wrong_spell_edges", ToJson(s.wrong_spell_edges)}};

@@ -270,9 +270,11 @@ void PrintRun(const RunResult& r, const RunSetup& setup, const ToolOptions& opti
                                       : std::string(),
                        Describe(r.second));
   }
-  if (r.false_losts > 0 || !r.wrong_localized.empty()) {
-    out << fmt::format("\n            {} LOST while right, {} spells of a wrong LOCALIZED pose",
-                       r.false_losts, r.wrong_localized.size());
+  if (r.false_losts > 0 || r.right_poses_given_up > 0 || !r.wrong_localized.empty()) {
+    out << fmt::format(
+        "\n            {} LOST while right, {} right poses given up, {} spells of a wrong "
+        "LOCALIZED pose",
+        r.false_losts, r.right_poses_given_up, r.wrong_localized.size());
   }
   out << fmt::format(
       "\n            {} frames, {} doors seen, {} collisions, envelope max "
@@ -312,6 +314,7 @@ nlohmann::json RunJson(const RunResult& r) {
                                                            {"ended_by", r.after_kidnap->ended_by}}
                                           : nlohmann::json(nullptr)},
           {"false_losts", r.false_losts},
+          {"right_poses_given_up", r.right_poses_given_up},
           {"wrong_localized_spells", r.wrong_localized.size()},
           {"frames", r.frames},
           {"doors_observed", r.doors_observed},
