@@ -26,17 +26,25 @@ int main(int argc, char** argv) {
   app.add_option("--config-dir", options.config_dir, "directory substituted for {config_dir}");
   app.add_option("--set", options.overrides,
                  "NAME=VALUE: a parameter of the graph, e.g. discovery_server=10.0.0.1:11811");
+  app.add_option("--security-dir", options.security_dir,
+                 "run the graph secured (DDS Security) with the identities, governance and "
+                 "permissions of this directory (deploy/security/make-keys.sh DIR makes it)")
+      ->check(CLI::ExistingDirectory);
   if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   try {
     const auto graph = stickrep::launch::LaunchGraph::LoadFile(graph_file);
     if (domain >= 0) options.extra_args = {"--domain", std::to_string(domain)};
+    if (!options.security_dir.empty()) {
+      options.security_dir = std::filesystem::absolute(options.security_dir).string();
+    }
     const auto results = stickrep::launch::RunGraph(graph, options, std::cout);
     stickrep::launch::PrintResults(results, std::cout);
     for (const auto& r : results) {
       if (r.exit_code == stickrep::kExitBadInput && r.signal == 0) return stickrep::kExitBadInput;
     }
+    // A process that failed at any time, restarted or not, makes the run a failure.
     for (const auto& r : results) {
-      if (r.signal == SIGKILL || (r.exit_code != 0 && r.signal == 0)) return 1;
+      if (r.signal == SIGKILL || (r.exit_code != 0 && r.signal == 0) || r.failures > 0) return 1;
     }
     return 0;
   } catch (const stickrep::InputError& e) {

@@ -15,6 +15,8 @@ packages=(
   iproute2 nftables                                           # the deploy test's two hosts
   libcli11-dev libfmt-dev nlohmann-json3-dev libspdlog-dev
   libsqlite3-dev                                              # recordings (components/bag)
+  openssl libssl-dev                                          # DDS Security: make-keys.sh, runtime
+  cyclonedds-dev cyclonedds-tools                             # the security test's outside peer
   clang libclang-rt-14-dev                                    # the fuzz targets (libFuzzer)
 )
 missing=()

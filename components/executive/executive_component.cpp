@@ -65,12 +65,24 @@ void ExecutiveComponent::OnMotionState(const message::MotionState& m) {
 
 void ExecutiveComponent::OnHeartbeat(const message::ComponentStatus& s) {
   const std::string& name = s.component_name;
+  // A process restarted faster than its death was noticed: its new heartbeat writer counts
+  // from 1 again. It was absent meanwhile (and a new localizer has no pose).
+  const auto last = heartbeat_sequence_.find(name);
+  if (last != heartbeat_sequence_.end() && s.header.sequence < last->second) {
+    ctx_.log->warn("process '{}' restarted (its heartbeats count from {} again)", name,
+                   s.header.sequence);
+    mission_.OnComponentGone(name, "it restarted");
+  }
+  heartbeat_sequence_[name] = s.header.sequence;
   if (s.state == message::ComponentState::kFinalized) {
     Handle(links_.OnStopped(name));
     return;
   }
   Handle(links_.OnHeartbeat(name, s.host, NowS()));
   if (s.state == message::ComponentState::kActive && !links_.HostLost(s.host)) {
+    if (mission_.Absent().count(name) > 0) {
+      ctx_.log->info("process '{}' is back, active on host '{}'", name, s.host);
+    }
     mission_.OnComponentActive(name);
   }
   Report();
@@ -80,8 +92,8 @@ void ExecutiveComponent::OnHeartbeatGone(const std::string& component_name) {
   links_.OnSilent(component_name, "its heartbeat's liveliness was lost", NowS());
 }
 
-// What the link monitor concluded: a dead process stops the mission; a silent host stops the
-// robot until it is heard again.
+// What the link monitor concluded: a dead process stops the robot until it is back; a silent
+// host stops the robot until it is heard again.
 void ExecutiveComponent::Handle(const std::vector<LinkMonitor::Event>& events) {
   for (const LinkMonitor::Event& e : events) {
     switch (e.kind) {

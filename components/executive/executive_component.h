@@ -1,6 +1,8 @@
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,8 +18,8 @@ namespace stickrep::executive {
 
 // The mission executive's logic: the other processes' heartbeats, the pose, the base's state,
 // odometry and goals in; motion commands (at the command rate), the mission's status and each
-// goal's result out. A process that dies stops the mission; a host that falls silent stops
-// the robot until it is heard again (LinkMonitor).
+// goal's result out. A process that dies stops the robot until it is back (restarted); a
+// host that falls silent stops the robot until it is heard again (LinkMonitor).
 class ExecutiveComponent : public component::Component {
  public:
   struct Outputs {
@@ -64,6 +66,8 @@ class ExecutiveComponent : public component::Component {
   std::function<std::string()> why_not_heard_;
   Outputs out_;
   bool localized_ = false;  // the localizer's latest status
+  // Each process's latest heartbeat sequence number: one that starts again is a new process.
+  std::map<std::string, uint32_t> heartbeat_sequence_;
   int waiting_reports_ = 0;
 };
 

@@ -66,12 +66,15 @@ std::vector<LinkMonitor::Event> LinkMonitor::Tick(double now_s) {
 }
 
 void LinkMonitor::JudgeSuspects(double now_s, std::vector<Event>& events) {
+  // On the executive's own host a silent process cannot be a lost link: it is judged dead
+  // at once, which stops the robot one settle time sooner.
+  const auto settled = [&](const Process& p) {
+    return p.suspect_since_s >= 0.0 &&
+           now_s - p.suspect_since_s >= (p.host == own_host_ ? 0.0 : settle_s_);
+  };
   std::set<std::string> hosts;
   for (const auto& [name, p] : processes_) {
-    if (!p.gone && p.suspect_since_s >= 0.0 && now_s - p.suspect_since_s >= settle_s_ &&
-        lost_hosts_.count(p.host) == 0) {
-      hosts.insert(p.host);
-    }
+    if (!p.gone && settled(p) && lost_hosts_.count(p.host) == 0) hosts.insert(p.host);
   }
   for (const std::string& host : hosts) {
     const auto on_host = ProcessesOn(host);
@@ -91,7 +94,7 @@ void LinkMonitor::JudgeSuspects(double now_s, std::vector<Event>& events) {
     }
     for (const std::string& n : on_host) {
       Process& p = processes_.at(n);
-      if (p.suspect_since_s >= 0.0 && now_s - p.suspect_since_s >= settle_s_) {
+      if (settled(p)) {
         p.gone = true;
         events.push_back(Event{Event::Kind::kProcessGone, host, {n}, p.why});
       }

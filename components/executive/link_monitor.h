@@ -12,7 +12,9 @@ namespace stickrep::executive {
 // silent for `settle_s` too, and that host is not the executive's own, the host is
 // unreachable (the link or the host is down, which may end); otherwise the process is dead.
 // A lost host is back when each of its processes is heard again; one that stays silent
-// `settle_s` after the others returned is dead. Times are seconds on one clock. No DDS.
+// `settle_s` after the others returned is dead. A process on the executive's own host is
+// dead as soon as it is suspected (no link can hide it). A dead process heard again (a
+// restarted one) is alive again. Times are seconds on one clock. No DDS.
 class LinkMonitor {
  public:
   struct Event {

@@ -74,6 +74,29 @@ TEST(LinkMonitorTest, OnTheExecutivesOwnHostSilenceIsAlwaysDeath) {
   EXPECT_EQ(events[0].why, "no heartbeat for 3.0 s");  // the monitor built with 3 s
 }
 
+TEST(LinkMonitorTest, OnTheExecutivesOwnHostASuspectIsDeadWithoutSettling) {
+  LinkMonitor m("robot", 3.0, 2.0);
+  for (double t = 0.0; t <= 10.0; t += 1.0) m.OnHeartbeat("sonar", "robot", t);
+  m.OnSilent("sonar", "its heartbeat's liveliness was lost", 11.0);
+  const auto events = m.Tick(11.05);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, Kind::kProcessGone);
+}
+
+TEST(LinkMonitorTest, ADeadProcessHeardAgainIsAliveAndCanDieAgain) {
+  LinkMonitor m("robot", 3.0, 2.0);
+  for (double t = 0.0; t <= 10.0; t += 1.0) m.OnHeartbeat("sonar", "robot", t);
+  m.OnSilent("sonar", "liveliness lost", 11.0);
+  ASSERT_EQ(m.Tick(11.1).size(), 1u);
+  EXPECT_TRUE(m.OnHeartbeat("sonar", "robot", 14.0).empty());  // restarted
+  for (double t = 14.5; t <= 16.0; t += 0.5) m.OnHeartbeat("sonar", "robot", t);
+  EXPECT_TRUE(TickUntil(m, 14.1, 16.0).empty());
+  m.OnSilent("sonar", "liveliness lost", 16.5);
+  const auto again = m.Tick(16.6);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].kind, Kind::kProcessGone);
+}
+
 TEST(LinkMonitorTest, AProcessThatDoesNotComeBackWithItsHostIsDead) {
   LinkMonitor m("base", 3.0, 2.0);
   Beat(m, {"sonar", "camera"}, 0.0, 10.0);

@@ -30,18 +30,32 @@ void Mission::Enter(MissionState s, const std::string& message) {
   message_ = message;
 }
 
+bool Mission::Required(const std::string& name) const {
+  return std::find(config_.required_components.begin(), config_.required_components.end(),
+                   name) != config_.required_components.end();
+}
+
 void Mission::OnComponentActive(const std::string& name) {
   active_.insert(name);
+  if (state_ == MissionState::kStoppedFault && absent_.erase(name) > 0 && absent_.empty()) {
+    ResumeAfterFault();
+    return;
+  }
   if (state_ != MissionState::kWaitingForComponents) return;
   const bool all = std::all_of(config_.required_components.begin(),
                                config_.required_components.end(),
                                [this](const std::string& c) { return active_.count(c) > 0; });
-  if (all) {
-    align_start_s_ = -1.0;
-    in_envelope_since_s_ = -1.0;
-    Enter(MissionState::kAligning,
-          "every process is active: aligning with the hallway axis and centring");
+  if (!all) return;
+  if (pose_while_waiting_) {
+    // A restarted executive: the localizer kept the pose meanwhile.
+    Enter(MissionState::kLocalized, "every process is active and the localizer holds the pose "
+                                    "at " + *pose_while_waiting_ + ": holding, ready for a goal");
+    return;
   }
+  align_start_s_ = -1.0;
+  in_envelope_since_s_ = -1.0;
+  Enter(MissionState::kAligning,
+        "every process is active: aligning with the hallway axis and centring");
 }
 
 std::vector<std::string> Mission::Missing() const {
@@ -72,11 +86,51 @@ void Mission::OnMotionState(bool in_envelope, double now_s) {
 
 void Mission::OnComponentGone(const std::string& name, const std::string& why) {
   active_.erase(name);
-  const bool required = std::find(config_.required_components.begin(),
-                                  config_.required_components.end(),
-                                  name) != config_.required_components.end();
-  if (required && state_ != MissionState::kStoppedFault) {
-    Enter(MissionState::kStoppedFault, "process '" + name + "' is gone (" + why + "): robot stopped");
+  // Before the mission starts, a process that goes is only waited for again.
+  if (!Required(name) || state_ == MissionState::kWaitingForComponents) return;
+  absent_.insert(name);
+  if (name == config_.pose_component) pose_component_gone_ = true;
+  if (state_ != MissionState::kStoppedFault) {
+    fault_resume_state_ = state_ == MissionState::kLinkLost ? resume_state_ : state_;
+  }
+  std::string names;
+  for (const std::string& n : absent_) names += (names.empty() ? "'" : ", '") + n + "'";
+  Enter(MissionState::kStoppedFault, "process '" + name + "' is gone (" + why +
+                                         "): robot stopped until " + names +
+                                         (absent_.size() > 1 ? " are" : " is") + " back");
+}
+
+void Mission::ResumeAfterFault() {
+  const std::string back = "every required process is back";
+  const bool had_pose = fault_resume_state_ == MissionState::kLocalized ||
+                        fault_resume_state_ == MissionState::kExecutingGoal ||
+                        fault_resume_state_ == MissionState::kGoalReached;
+  const bool new_localizer = pose_component_gone_;
+  pose_component_gone_ = false;
+  switch (fault_resume_state_) {
+    case MissionState::kAligning:
+      align_start_s_ = -1.0;
+      in_envelope_since_s_ = -1.0;
+      Enter(MissionState::kAligning, back + ": aligning again");
+      return;
+    case MissionState::kLocalized:
+    case MissionState::kExecutingGoal:
+    case MissionState::kGoalReached:
+    case MissionState::kRecoveringPose:
+      if (new_localizer || !had_pose) {
+        Enter(MissionState::kRecoveringPose,
+              back + (new_localizer ? ": the localizer restarted without the pose: travelling "
+                                      "to recover it again"
+                                    : ": no pose yet: travelling to recover it"));
+      } else {
+        Enter(fault_resume_state_,
+              back + ": pose kept; " + ToString(fault_resume_state_) + " continues");
+      }
+      return;
+    default:
+      Enter(MissionState::kWaitingForComponents, back + ": waiting for the processes");
+      if (!active_.empty()) OnComponentActive(*active_.begin());
+      return;
   }
 }
 
@@ -120,6 +174,17 @@ void Mission::OnLinkBack(const std::string& host, double outage_s, bool localize
 }
 
 void Mission::OnLocalized(const std::string& where) {
+  if (state_ == MissionState::kWaitingForComponents) {
+    pose_while_waiting_ = where;
+    return;
+  }
+  if (state_ == MissionState::kStoppedFault &&
+      (fault_resume_state_ == MissionState::kRecoveringPose ||
+       fault_resume_state_ == MissionState::kAligning) &&
+      !pose_component_gone_) {
+    fault_resume_state_ = MissionState::kLocalized;  // from what arrived before the fault
+    return;
+  }
   if (state_ == MissionState::kLinkLost && (resume_state_ == MissionState::kRecoveringPose ||
                                             resume_state_ == MissionState::kAligning)) {
     resume_state_ = MissionState::kLocalized;  // recovered from what arrived before the loss
@@ -132,6 +197,15 @@ void Mission::OnLocalized(const std::string& where) {
 }
 
 void Mission::OnLost() {
+  if (state_ == MissionState::kWaitingForComponents) pose_while_waiting_.reset();
+  if (state_ == MissionState::kStoppedFault) {
+    if (fault_resume_state_ == MissionState::kLocalized ||
+        fault_resume_state_ == MissionState::kExecutingGoal ||
+        fault_resume_state_ == MissionState::kGoalReached) {
+      fault_resume_state_ = MissionState::kRecoveringPose;
+    }
+    return;
+  }
   if (state_ == MissionState::kLinkLost && resume_state_ != MissionState::kWaitingForComponents) {
     resume_state_ = MissionState::kRecoveringPose;
     return;
@@ -149,7 +223,7 @@ std::optional<std::string> Mission::CanTakeGoal() const {
     case MissionState::kExecutingGoal:
       return std::nullopt;
     case MissionState::kStoppedFault:
-      return "the robot is stopped after a fault";
+      return "the robot is stopped while a required process is absent";
     case MissionState::kLinkLost:
       return "the link to the robot is lost";
     default:

@@ -16,7 +16,7 @@ enum class MissionState {
   kLocalized,       // pose recovered; holding until a goal arrives
   kExecutingGoal,   // travelling along the ring to the goal
   kGoalReached,
-  kStoppedFault,
+  kStoppedFault,     // a required process is absent: stopped until every one is back
   kLinkLost,        // every process of another host went silent: stopped until it is back
 };
 const char* ToString(MissionState s);
@@ -46,23 +46,32 @@ struct MissionConfig {
   double align_speed_ftps = 1.3;
   double aligned_hold_s = 1.0;
   double align_timeout_s = 30.0;
+  // The process that holds the pose: when it was absent and is back, it is a new process
+  // without the pose, so the mission recovers the pose again.
+  std::string pose_component = "localizer";
 };
 
 // The executive's state machine, free of DDS: waits until every required process is
 // active, aligns with the hallway and centres (A3, A4), travels to recover the pose until
 // the localizer reports LOCALIZED, holds there until a goal arrives, travels to it, recovers
-// again when the pose is lost, and stops the robot for good when a required process dies.
-// Every transition is recorded. Times are seconds on any one clock the caller keeps.
+// again when the pose is lost, and stops the robot while a required process is absent
+// (STOPPED_FAULT). When every absent process is back (restarted), the mission resumes where
+// it was, keeping the pose, unless the localizer was among them: then it recovers the pose
+// again. Every transition is recorded. Times are seconds on any one clock the caller keeps.
 class Mission {
  public:
   explicit Mission(MissionConfig config);
 
+  // A process reported itself active (again, after a restart: the mission may resume).
   void OnComponentActive(const std::string& name);
   // Locomotion's report: whether the robot is inside the navigation envelope at `now_s`
   // (the base's clock); aligning is timed from the first report.
   void OnMotionState(bool in_envelope, double now_s);
-  // A required process stopped or its liveliness was lost.
+  // A process stopped or its liveliness was lost; a required one stops the robot until it
+  // is active again.
   void OnComponentGone(const std::string& name, const std::string& why);
+  // The required processes absent now (gone and not back).
+  const std::set<std::string>& Absent() const { return absent_; }
   // Every process on `host` went silent (a link or host loss): the robot is stopped and the
   // mission waits. Back after `outage_s`: the mission continues where it was, keeping the
   // pose if `localized` (the localizer still reports one), else recovering it again.
@@ -91,6 +100,9 @@ class Mission {
 
  private:
   void Enter(MissionState s, const std::string& message);
+  bool Required(const std::string& name) const;
+  // Every absent process is back: continue where the fault stopped the mission.
+  void ResumeAfterFault();
 
   MissionConfig config_;
   MissionState state_ = MissionState::kWaitingForComponents;
@@ -98,6 +110,11 @@ class Mission {
   double goal_odometer_in_ = 0.0;  // odometer reading at which the goal is reached
   std::set<std::string> active_;
   MissionState resume_state_ = MissionState::kWaitingForComponents;  // after a link loss
+  MissionState fault_resume_state_ = MissionState::kWaitingForComponents;  // after a fault
+  std::set<std::string> absent_;     // required processes gone and not back
+  // A pose the localizer already holds when this executive starts (it was restarted).
+  std::optional<std::string> pose_while_waiting_;
+  bool pose_component_gone_ = false;  // the localizer was among them
   double align_start_s_ = -1.0;
   double in_envelope_since_s_ = -1.0;
   std::string message_;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 namespace stickrep::executive {
 namespace {
 
@@ -114,16 +116,101 @@ TEST(MissionTest, APoseBeyondTheGoalEndsItAtOnce) {
   EXPECT_EQ(m.state(), MissionState::kGoalReached);
 }
 
-TEST(MissionTest, RequiredProcessGoneStopsTheRobotForGood) {
+TEST(MissionTest, RequiredProcessGoneStopsTheRobotUntilItIsBackAndThePoseIsKept) {
   Mission m(TwoComponents());
   m.OnComponentActive("sonar");
   m.OnComponentActive("localizer");
+  m.OnLocalized("x");
   m.OnComponentGone("sonar", "liveliness lost");
   EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+  EXPECT_FALSE(m.Motion().move);
+  EXPECT_EQ(m.Absent(), (std::set<std::string>{"sonar"}));
+  EXPECT_NE(m.CanTakeGoal(), std::nullopt);
   m.OnComponentActive("sonar");
+  EXPECT_EQ(m.state(), MissionState::kLocalized);
+  EXPECT_NE(m.last_message().find("pose kept"), std::string::npos) << m.last_message();
+  EXPECT_TRUE(m.Absent().empty());
+}
+
+TEST(MissionTest, AProcessThatIsNotRequiredChangesNothingWhenItGoes) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnComponentGone("camera", "liveliness lost");
+  EXPECT_EQ(m.state(), MissionState::kAligning);
+}
+
+TEST(MissionTest, TheLocalizerBackAfterAFaultMeansRecoveringThePoseAgain) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
   m.OnLocalized("x");
+  m.OnComponentGone("localizer", "liveliness lost");
+  m.OnComponentActive("localizer");
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_TRUE(m.Motion().move);
+  EXPECT_NE(m.last_message().find("localizer restarted"), std::string::npos) << m.last_message();
+  m.OnLocalized("y");
+  EXPECT_EQ(m.state(), MissionState::kLocalized);
+}
+
+TEST(MissionTest, EveryAbsentProcessMustBeBackBeforeTheRobotMovesAgain) {
+  Mission m = [] {
+    Mission r(TwoComponents());
+    r.OnComponentActive("sonar");
+    r.OnComponentActive("localizer");
+    r.OnMotionState(true, 0.0);
+    r.OnMotionState(true, 1.0);
+    return r;
+  }();
+  ASSERT_EQ(m.state(), MissionState::kRecoveringPose);
+  m.OnComponentGone("sonar", "liveliness lost");
+  m.OnComponentGone("localizer", "no heartbeat for 2.0 s");
+  EXPECT_NE(m.last_message().find("'localizer', 'sonar' are back"), std::string::npos)
+      << m.last_message();
+  m.OnComponentActive("sonar");
   EXPECT_EQ(m.state(), MissionState::kStoppedFault);
   EXPECT_FALSE(m.Motion().move);
+  m.OnComponentActive("localizer");
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_TRUE(m.Motion().move);
+}
+
+TEST(MissionTest, AGoalInProgressContinuesAfterAFaultThatKeptThePose) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  m.StartGoal(GoalPlan{"g1", "ahead 300 in", +1, 300.0}, 0.0);
+  m.OnComponentGone("sonar", "liveliness lost");
+  m.OnOdometer(400.0);  // odometry of a base at rest does not end the goal meanwhile
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+  m.OnComponentActive("sonar");
+  EXPECT_EQ(m.state(), MissionState::kExecutingGoal);
+  m.OnOdometer(400.0);
+  EXPECT_EQ(m.state(), MissionState::kGoalReached);
+}
+
+TEST(MissionTest, APoseLostDuringAFaultIsRecoveredAfterIt) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  m.OnComponentGone("sonar", "liveliness lost");
+  m.OnLost();
+  m.OnComponentActive("sonar");
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+}
+
+TEST(MissionTest, ARestartedExecutiveHoldsThePoseTheLocalizerKept) {
+  Mission m(TwoComponents());
+  m.OnLocalized("ring a edge 3");  // the localizer's latched pose, before the heartbeats
+  m.OnComponentActive("sonar");
+  EXPECT_EQ(m.state(), MissionState::kWaitingForComponents);
+  m.OnComponentActive("localizer");
+  EXPECT_EQ(m.state(), MissionState::kLocalized);
+  EXPECT_FALSE(m.Motion().move);
+  EXPECT_NE(m.last_message().find("ring a edge 3"), std::string::npos) << m.last_message();
 }
 
 TEST(MissionTest, LostPoseStartsRecoveryAgain) {

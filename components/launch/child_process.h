@@ -20,6 +20,7 @@ class ChildProcess {
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   const std::string& name() const { return name_; }
+  pid_t pid() const { return pid_; }
   int output_fd() const { return fd_; }
   // Complete lines of output that arrived since the last call (and, with flush, the
   // incomplete last one). Everything read is also kept in output().

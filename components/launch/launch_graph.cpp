@@ -7,6 +7,51 @@
 
 namespace stickrep::launch {
 
+const char* ToString(RestartPolicy::When when) {
+  switch (when) {
+    case RestartPolicy::When::kNever: return "never";
+    case RestartPolicy::When::kOnFailure: return "on-failure";
+    case RestartPolicy::When::kAlways: return "always";
+  }
+  return "?";
+}
+
+namespace {
+
+RestartPolicy::When ParseWhen(const StrictYaml& node, const std::string& key,
+                              const std::string& text) {
+  for (const auto when : {RestartPolicy::When::kNever, RestartPolicy::When::kOnFailure,
+                          RestartPolicy::When::kAlways}) {
+    if (text == ToString(when)) return when;
+  }
+  node.Fail(key, "'" + text + "' is not one of: never, on-failure, always");
+}
+
+}  // namespace
+
+RestartPolicy LoadRestartPolicy(const StrictYaml& node, const std::string& key,
+                                RestartPolicy p) {
+  const StrictYaml r = node.Child(key);
+  if (r.IsScalar()) {
+    p.when = ParseWhen(node, key, r.As<std::string>());
+    return p;
+  }
+  if (!r.IsMap()) node.Fail(key, "expected a policy name or a mapping with `policy`");
+  p.when = ParseWhen(r, "policy", r.Get<std::string>("policy"));
+  p.backoff_initial_s = r.GetOr<double>("backoff_initial_s", p.backoff_initial_s);
+  if (!(p.backoff_initial_s >= 0.05 && p.backoff_initial_s <= 60.0)) {
+    r.Fail("backoff_initial_s", "must be within [0.05, 60] s");
+  }
+  p.backoff_max_s = r.GetOr<double>("backoff_max_s", p.backoff_max_s);
+  if (!(p.backoff_max_s >= p.backoff_initial_s && p.backoff_max_s <= 600.0)) {
+    r.Fail("backoff_max_s", "must be within [backoff_initial_s, 600] s");
+  }
+  p.max_restarts = r.GetOr<int>("max_restarts", p.max_restarts);
+  if (p.max_restarts < 0) r.Fail("max_restarts", "must not be negative (0: no limit)");
+  r.Finish();
+  return p;
+}
+
 LaunchGraph LaunchGraph::Load(const StrictYaml& root) {
   LaunchGraph g;
   g.file = root.file();
@@ -19,10 +64,11 @@ LaunchGraph LaunchGraph::Load(const StrictYaml& root) {
   if (g.start_spacing_s < 0.0 || g.start_spacing_s > 10.0) {
     l.Fail("start_spacing_s", "must be within [0, 10] s");
   }
+  if (l.Has("restart")) g.restart = LoadRestartPolicy(l, "restart", g.restart);
   if (l.Has("parameters")) {
     const StrictYaml params = l.Child("parameters");
     for (const std::string& key : params.Keys()) {
-      if (key == "graph_dir" || key == "config_dir") {
+      if (key == "graph_dir" || key == "config_dir" || key == "security_dir") {
         params.Fail(key, "a built-in placeholder cannot be a parameter");
       }
       g.parameters[key] = params.Get<std::string>(key);
@@ -35,7 +81,7 @@ LaunchGraph LaunchGraph::Load(const StrictYaml& root) {
     params.Finish();
   }
   std::map<std::string, std::string> known = g.parameters;
-  known["graph_dir"] = known["config_dir"] = "";
+  known["graph_dir"] = known["config_dir"] = known["security_dir"] = "";
   const auto check = [&](const StrictYaml& node, const std::string& key, const std::string& arg) {
     try {
       SubstitutePlaceholders(arg, known);
@@ -63,6 +109,13 @@ LaunchGraph LaunchGraph::Load(const StrictYaml& root) {
       p.GetOr<std::string>("args", "");
     }
     spec.use_common_args = p.GetOr<bool>("use_common_args", true);
+    if (p.Has("secure_args")) {
+      for (const StrictYaml& a : p.Sequence("secure_args")) {
+        spec.secure_args.push_back(a.As<std::string>());
+        check(p, "secure_args", spec.secure_args.back());
+      }
+    }
+    spec.restart = p.Has("restart") ? LoadRestartPolicy(p, "restart", g.restart) : g.restart;
     if (!names.insert(spec.name).second) p.Fail("name", "process '" + spec.name + "' twice");
     p.Finish();
     g.processes.push_back(std::move(spec));
@@ -95,8 +148,8 @@ std::string SubstitutePlaceholders(const std::string& arg,
     const auto it = values.find(name);
     if (it == values.end()) {
       throw InputError("", 0, "", "'{" + name + "}' in '" + arg +
-                                      "' is neither {graph_dir}, {config_dir} nor a parameter "
-                                      "of the graph");
+                                      "' is neither {graph_dir}, {config_dir}, {security_dir} "
+                                      "nor a parameter of the graph");
     }
     out += arg.substr(pos, open - pos) + it->second;
     pos = close + 1;
@@ -106,7 +159,8 @@ std::string SubstitutePlaceholders(const std::string& arg,
 
 std::map<std::string, std::string> PlaceholderValues(const LaunchGraph& graph,
                                                      const std::string& config_dir,
-                                                     const std::vector<std::string>& overrides) {
+                                                     const std::vector<std::string>& overrides,
+                                                     const std::string& security_dir) {
   std::map<std::string, std::string> values = graph.parameters;
   for (const std::string& o : overrides) {
     const auto eq = o.find('=');
@@ -129,6 +183,7 @@ std::map<std::string, std::string> PlaceholderValues(const LaunchGraph& graph,
       {"config_dir", config_dir}};
   for (auto& [name, value] : values) value = SubstitutePlaceholders(value, dirs);
   values.insert(dirs.begin(), dirs.end());
+  values["security_dir"] = security_dir;
   return values;
 }
 

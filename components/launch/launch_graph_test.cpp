@@ -86,5 +86,65 @@ TEST(LaunchGraphTest, AnArgumentNamingAnUnknownPlaceholderIsRefusedAtLoad) {
   }
 }
 
+TEST(LaunchGraphTest, RestartPolicyOfTheGraphIsEveryProcesssUnlessItNamesItsOwn) {
+  const char* text =
+      "launch:\n  name: x\n"
+      "  restart: {policy: on-failure, backoff_initial_s: 0.25, backoff_max_s: 4, "
+      "max_restarts: 3}\n"
+      "  processes:\n"
+      "    - name: a\n      executable: true\n"
+      "    - name: b\n      executable: true\n      restart: never\n"
+      "    - name: c\n      executable: true\n      restart: {policy: always}\n";
+  const LaunchGraph g = LaunchGraph::Load(StrictYaml::LoadString(text, "g.yaml"));
+  EXPECT_EQ(g.processes[0].restart.when, RestartPolicy::When::kOnFailure);
+  EXPECT_DOUBLE_EQ(g.processes[0].restart.backoff_initial_s, 0.25);
+  EXPECT_DOUBLE_EQ(g.processes[0].restart.backoff_max_s, 4.0);
+  EXPECT_EQ(g.processes[0].restart.max_restarts, 3);
+  EXPECT_EQ(g.processes[1].restart.when, RestartPolicy::When::kNever);
+  EXPECT_EQ(g.processes[2].restart.when, RestartPolicy::When::kAlways);
+  EXPECT_EQ(g.processes[2].restart.max_restarts, 3);  // the rest from the graph's
+}
+
+TEST(LaunchGraphTest, WithoutARestartPolicyNothingIsRestarted) {
+  const char* text = "launch:\n  name: x\n  processes:\n    - name: a\n      executable: true\n";
+  const LaunchGraph g = LaunchGraph::Load(StrictYaml::LoadString(text, "g.yaml"));
+  EXPECT_EQ(g.processes[0].restart.when, RestartPolicy::When::kNever);
+}
+
+// A bad restart entry is refused with the file, the line and the key.
+void ExpectRefused(const std::string& restart, const std::string& key, int line) {
+  const std::string text = "launch:\n  name: x\n  processes:\n    - name: a\n"
+                           "      executable: true\n      restart:" + restart + "\n";
+  try {
+    LaunchGraph::Load(StrictYaml::LoadString(text, "g.yaml"));
+    FAIL() << "taken: " << restart;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("g.yaml:" + std::to_string(line)), std::string::npos) << what;
+    EXPECT_NE(what.find(key), std::string::npos) << what;
+  }
+}
+
+TEST(LaunchGraphTest, BadRestartPoliciesAreRefusedWithFileLineAndKey) {
+  ExpectRefused(" sometimes", "restart", 6);
+  ExpectRefused(" {policy: on-failure, backoff_initial_s: 0}", "backoff_initial_s", 6);
+  ExpectRefused(" {policy: always, backoff_initial_s: 2, backoff_max_s: 1}", "backoff_max_s", 6);
+  ExpectRefused(" {policy: always, max_restarts: -1}", "max_restarts", 6);
+  ExpectRefused("\n        policy: always\n        backof_max_s: 3", "backof_max_s", 8);
+  ExpectRefused(" {backoff_max_s: 3}", "policy", 6);
+}
+
+TEST(LaunchGraphTest, SecureArgsMayNameTheSecurityDirectory) {
+  const char* text =
+      "launch:\n  name: x\n  processes:\n"
+      "    - name: server\n      executable: fast-discovery-server\n"
+      "      use_common_args: false\n"
+      "      secure_args: [-x, \"{security_dir}/discovery_server.xml\"]\n";
+  const LaunchGraph g = LaunchGraph::Load(StrictYaml::LoadString(text, "g.yaml"));
+  const auto values = PlaceholderValues(g, "/c", {}, "/keys");
+  EXPECT_EQ(SubstitutePlaceholders(g.processes[0].secure_args[1], values),
+            "/keys/discovery_server.xml");
+}
+
 }  // namespace
 }  // namespace stickrep::launch

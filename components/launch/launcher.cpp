@@ -9,6 +9,9 @@
 #include <fmt/ostream.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
 #include <atomic>
 #include <cstring>
 #include <chrono>
@@ -33,9 +36,22 @@ std::string FindExecutable(const std::string& exe, const std::string& bin_dir) {
   return exe;  // execvp searches PATH
 }
 
+using SteadyClock = std::chrono::steady_clock;
+
+double SecondsBetween(SteadyClock::time_point a, SteadyClock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+// One process of the graph across its restarts.
 struct Child {
+  const ProcessSpec* spec = nullptr;
+  std::vector<std::string> argv;
   std::unique_ptr<ChildProcess> process;
   ProcessResult result;
+  SteadyClock::time_point started;
+  bool down = false;                      // ended, and no restart is due
+  std::optional<SteadyClock::time_point> restart_at;
+  int in_a_row = 0;                       // restarts since it last stayed up backoff_max_s
 };
 
 void Forward(Child& c, std::ostream& out, size_t width, bool flush_partial) {
@@ -54,28 +70,155 @@ bool Reap(Child& c) {
   return true;
 }
 
-// Starts every process of the graph with its arguments, the graph's parameters substituted.
+std::string HowItEnded(const ProcessResult& r) {
+  return r.signal != 0 ? fmt::format("was killed by signal {} ({})", r.signal, strsignal(r.signal))
+                       : fmt::format("exited with code {}", r.exit_code);
+}
+
+// The command line of one process: its arguments, the graph's parameters substituted.
+std::vector<std::string> CommandLine(const LaunchGraph& graph, const ProcessSpec& p,
+                                     const LaunchOptions& options,
+                                     const std::map<std::string, std::string>& values) {
+  std::vector<std::string> args{FindExecutable(p.executable, options.bin_dir)};
+  for (const std::string& a : p.args) args.push_back(SubstitutePlaceholders(a, values));
+  if (p.use_common_args) {
+    for (const std::string& a : graph.common_args) {
+      args.push_back(SubstitutePlaceholders(a, values));
+    }
+    args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
+    if (!options.security_dir.empty()) {
+      args.insert(args.end(), {"--security-dir", options.security_dir});
+    }
+  }
+  if (!options.security_dir.empty()) {
+    for (const std::string& a : p.secure_args) args.push_back(SubstitutePlaceholders(a, values));
+  }
+  return args;
+}
+
+// Starts every process of the graph.
 std::vector<Child> StartChildren(const LaunchGraph& graph, const LaunchOptions& options) {
-  const auto values = PlaceholderValues(graph, options.config_dir, options.overrides);
+  const auto values =
+      PlaceholderValues(graph, options.config_dir, options.overrides, options.security_dir);
   std::vector<Child> children;
   for (const ProcessSpec& p : graph.processes) {
-    std::vector<std::string> args{FindExecutable(p.executable, options.bin_dir)};
-    for (const std::string& a : p.args) args.push_back(SubstitutePlaceholders(a, values));
-    if (p.use_common_args) {
-      for (const std::string& a : graph.common_args) {
-        args.push_back(SubstitutePlaceholders(a, values));
-      }
-      args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
-    }
     Child c;
+    c.spec = &p;
+    c.argv = CommandLine(graph, p, options, values);
     c.result.name = p.name;
-    c.process = std::make_unique<ChildProcess>(p.name, args);
+    c.process = std::make_unique<ChildProcess>(p.name, c.argv);
+    c.started = SteadyClock::now();
     children.push_back(std::move(c));
     if (graph.start_spacing_s > 0.0) {
       std::this_thread::sleep_for(std::chrono::duration<double>(graph.start_spacing_s));
     }
   }
   return children;
+}
+
+// A process ended while the run goes on: schedules its restart if its policy says so, with
+// the back-off, or leaves it down; says which.
+void DecideRestart(Child& c, std::ostream& out) {
+  const RestartPolicy& policy = c.spec->restart;
+  const ProcessResult& r = c.result;
+  const bool failed = r.signal != 0 || r.exit_code != 0;
+  const double ran_s = SecondsBetween(c.started, SteadyClock::now());
+  const bool wanted = policy.when == RestartPolicy::When::kAlways ||
+                      (policy.when == RestartPolicy::When::kOnFailure && failed);
+  if (!wanted || (policy.max_restarts > 0 && r.restarts >= policy.max_restarts)) {
+    fmt::print(out, "launch: {} {} after {:.1f} s; it stays down ({})\n", r.name, HowItEnded(r),
+               ran_s,
+               wanted ? fmt::format("{} restarts were allowed", policy.max_restarts)
+                      : fmt::format("restart policy {}", ToString(policy.when)));
+    c.down = true;
+    return;
+  }
+  if (ran_s >= policy.backoff_max_s) c.in_a_row = 0;
+  const double delay_s =
+      std::min(policy.backoff_max_s, policy.backoff_initial_s * std::pow(2.0, c.in_a_row));
+  c.in_a_row++;
+  c.restart_at = SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(
+                                          std::chrono::duration<double>(delay_s));
+  fmt::print(out, "launch: {} {} after {:.1f} s: restarting it in {:.2f} s (restart {}{})\n",
+             r.name, HowItEnded(r), ran_s, delay_s, r.restarts + 1,
+             policy.max_restarts > 0 ? fmt::format(" of {}", policy.max_restarts) : "");
+}
+
+void Restart(Child& c, std::ostream& out) {
+  c.restart_at.reset();
+  c.process = std::make_unique<ChildProcess>(c.result.name, c.argv);
+  c.started = SteadyClock::now();
+  c.result.restarts++;
+  c.result.exit_code = -1;
+  c.result.signal = 0;
+  fmt::print(out, "launch: {} restarted (restart {})\n", c.result.name, c.result.restarts);
+}
+
+bool Running(const Child& c) { return !c.down && !c.restart_at; }
+
+// One round of the run: forwards output, reaps what ended, restarts what is due. Returns why
+// the run must end, or "".
+std::string Step(const LaunchGraph& graph, std::vector<Child>& children, std::ostream& out,
+                 size_t width) {
+  std::string ended_by;
+  for (Child& c : children) {
+    if (c.restart_at && SteadyClock::now() >= *c.restart_at) Restart(c, out);
+    if (!Running(c)) continue;
+    Forward(c, out, width, false);
+    if (!Reap(c)) continue;
+    Forward(c, out, width, true);
+    const bool failed = c.result.signal != 0 || c.result.exit_code != 0;
+    if (failed) c.result.failures++;
+    const bool ends_the_run = c.result.name == graph.until_exit_of;
+    if (c.result.exit_code == 2 && c.result.signal == 0) {
+      ended_by = c.result.name + " refused its input (exit code 2)";
+      c.down = true;
+    } else if (ends_the_run && !failed) {
+      ended_by = c.result.name + " exited";  // done: never restarted
+      c.down = true;
+    } else {
+      DecideRestart(c, out);
+      if (ends_the_run && c.down) ended_by = c.result.name + " exited";
+    }
+  }
+  if (std::all_of(children.begin(), children.end(), [](const Child& c) { return c.down; })) {
+    // Keeps the reason a process gave, when it gave one in the same round.
+    ended_by = ended_by.empty() ? "every process exited" : "every process exited; " + ended_by;
+  }
+  return ended_by;
+}
+
+// SIGTERM to every process still running, SIGKILL to those still there after the grace.
+void StopChildren(std::vector<Child>& children, const LaunchOptions& options, std::ostream& out,
+                  size_t width) {
+  for (Child& c : children) {
+    if (Running(c)) c.process->Signal(SIGTERM);
+  }
+  const auto deadline = SteadyClock::now() +
+                        std::chrono::duration_cast<SteadyClock::duration>(
+                            std::chrono::duration<double>(options.stop_grace_s));
+  for (;;) {
+    bool all_done = true;
+    for (Child& c : children) {
+      if (!Running(c)) continue;
+      Forward(c, out, width, false);
+      all_done &= Reap(c);
+    }
+    if (all_done) break;
+    if (SteadyClock::now() > deadline) {
+      for (Child& c : children) {
+        if (Running(c) && !c.process->Exited()) {
+          fmt::print(out, "{} did not stop within {:g} s: killing it\n", c.result.name,
+                     options.stop_grace_s);
+          c.process->Signal(SIGKILL);
+          c.process->WaitExit(5.0);
+          Reap(c);
+        }
+      }
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 }  // namespace
@@ -92,64 +235,29 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
   size_t width = 0;
   for (const ProcessSpec& p : graph.processes) width = std::max(width, p.name.size());
   std::vector<Child> children = StartChildren(graph, options);
-  const auto started = std::chrono::steady_clock::now();
-  fmt::print(out, "started {} processes of '{}'\n", children.size(), graph.name);
+  const auto started = SteadyClock::now();
+  fmt::print(out, "started {} processes of '{}'{}\n", children.size(), graph.name,
+             options.security_dir.empty() ? "" : " (secured: " + options.security_dir + ")");
 
   std::string ended_by;
   while (ended_by.empty()) {
     std::vector<pollfd> fds;
-    for (const Child& c : children) fds.push_back({c.process->output_fd(), POLLIN, 0});
-    poll(fds.data(), fds.size(), 100);
-    for (Child& c : children) {
-      Forward(c, out, width, false);
-      if (!Reap(c)) continue;
-      if (c.result.name == graph.until_exit_of) ended_by = c.result.name + " exited";
-      if (c.result.exit_code == 2 && c.result.signal == 0) {
-        ended_by = c.result.name + " refused its input (exit code 2)";
-      }
+    for (const Child& c : children) {
+      if (Running(c)) fds.push_back({c.process->output_fd(), POLLIN, 0});
     }
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    if (graph.max_duration_s > 0.0 && elapsed > graph.max_duration_s) {
+    poll(fds.data(), fds.size(), 100);
+    ended_by = Step(graph, children, out, width);
+    const double elapsed = SecondsBetween(started, SteadyClock::now());
+    if (ended_by.empty() && graph.max_duration_s > 0.0 && elapsed > graph.max_duration_s) {
       ended_by = fmt::format("the {:g} s limit passed", graph.max_duration_s);
     }
-    if (g_stop_requested) ended_by = "a stop was requested";
-    if (std::all_of(children.begin(), children.end(),
-                    [](const Child& c) { return c.process->Exited(); })) {
-      // Keeps the reason a process gave, when it gave one in the same round.
-      ended_by = ended_by.empty() ? "every process exited"
-                                  : "every process exited; " + ended_by;
-    }
+    if (ended_by.empty() && g_stop_requested) ended_by = "a stop was requested";
   }
   fmt::print(out, "ending the run: {}\n", ended_by);
-  for (Child& c : children) c.process->Signal(SIGTERM);
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(options.stop_grace_s));
-  for (;;) {
-    bool all_done = true;
-    for (Child& c : children) {
-      Forward(c, out, width, false);
-      all_done &= Reap(c);
-    }
-    if (all_done) break;
-    if (std::chrono::steady_clock::now() > deadline) {
-      for (Child& c : children) {
-        if (!c.process->Exited()) {
-          fmt::print(out, "{} did not stop within {:g} s: killing it\n", c.result.name,
-                     options.stop_grace_s);
-          c.process->Signal(SIGKILL);
-          c.process->WaitExit(5.0);
-          Reap(c);
-        }
-      }
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  StopChildren(children, options, out, width);
   std::vector<ProcessResult> results;
   for (Child& c : children) {
-    Forward(c, out, width, true);
+    if (c.process->Exited()) Forward(c, out, width, true);
     results.push_back(c.result);
   }
   return results;
@@ -158,11 +266,12 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
 void PrintResults(const std::vector<ProcessResult>& results, std::ostream& out) {
   size_t width = 7;
   for (const auto& r : results) width = std::max(width, r.name.size());
-  fmt::print(out, "\n{:<{}}  {:<9}  {}\n", "PROCESS", width, "EXIT", "SUMMARY");
+  fmt::print(out, "\n{:<{}}  {:<9}  {:<8}  {}\n", "PROCESS", width, "EXIT", "RESTARTS",
+             "SUMMARY");
   for (const auto& r : results) {
     const std::string how =
         r.signal != 0 ? fmt::format("signal {}", r.signal) : fmt::format("{}", r.exit_code);
-    fmt::print(out, "{:<{}}  {:<9}  {}\n", r.name, width, how,
+    fmt::print(out, "{:<{}}  {:<9}  {:<8}  {}\n", r.name, width, how, r.restarts,
                r.last_summary.empty() ? "-" : r.last_summary);
   }
 }

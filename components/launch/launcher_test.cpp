@@ -43,5 +43,71 @@ TEST(LauncherTest, ExitCodesAreReported) {
   EXPECT_THAT(out.str(), HasSubstr("every process exited"));
 }
 
+ProcessSpec WithRestart(ProcessSpec p, RestartPolicy::When when, int max_restarts) {
+  p.restart.when = when;
+  p.restart.backoff_initial_s = 0.05;
+  p.restart.backoff_max_s = 0.4;
+  p.restart.max_restarts = max_restarts;
+  return p;
+}
+
+TEST(LauncherTest, AKilledProcessIsRestartedWithADoublingBackOffUpToTheLimit) {
+  std::ostringstream out;
+  const auto results = RunGraph(
+      Graph({WithRestart({"crashy", "sh", {"-c", "echo up; kill -9 $$"}},
+                         RestartPolicy::When::kOnFailure, 3)},
+            ""),
+      LaunchOptions{"", "", {}, 5.0, {}}, out);
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].restarts, 3);
+  EXPECT_EQ(results[0].failures, 4);
+  EXPECT_EQ(results[0].signal, SIGKILL);
+  EXPECT_THAT(out.str(), HasSubstr("crashy was killed by signal 9"));
+  EXPECT_THAT(out.str(), HasSubstr("restarting it in 0.05 s (restart 1 of 3)"));
+  EXPECT_THAT(out.str(), HasSubstr("restarting it in 0.10 s (restart 2 of 3)"));
+  EXPECT_THAT(out.str(), HasSubstr("restarting it in 0.20 s (restart 3 of 3)"));
+  EXPECT_THAT(out.str(), HasSubstr("it stays down (3 restarts were allowed)"));
+  std::ostringstream table;
+  PrintResults(results, table);
+  EXPECT_THAT(table.str(), HasSubstr("RESTARTS"));
+}
+
+TEST(LauncherTest, OnFailureLeavesACleanExitDownAndAlwaysRestartsIt) {
+  std::ostringstream out;
+  const auto results = RunGraph(
+      Graph({WithRestart({"clean", "true", {}}, RestartPolicy::When::kOnFailure, 5),
+             WithRestart({"again", "true", {}}, RestartPolicy::When::kAlways, 2)},
+            ""),
+      LaunchOptions{"", "", {}, 5.0, {}}, out);
+  EXPECT_EQ(results[0].restarts, 0);
+  EXPECT_EQ(results[1].restarts, 2);
+  EXPECT_EQ(results[1].failures, 0);
+  EXPECT_THAT(out.str(), HasSubstr("clean exited with code 0"));
+  EXPECT_THAT(out.str(), HasSubstr("restart policy on-failure"));
+}
+
+TEST(LauncherTest, BadInputIsNeverRestartedAndEndsTheRun) {
+  std::ostringstream out;
+  const auto results = RunGraph(
+      Graph({WithRestart({"bad", "sh", {"-c", "exit 2"}}, RestartPolicy::When::kAlways, 0),
+             {"slow", "sleep", {"20"}}},
+            ""),
+      LaunchOptions{"", "", {}, 5.0, {}}, out);
+  EXPECT_EQ(results[0].restarts, 0);
+  EXPECT_EQ(results[0].exit_code, 2);
+  EXPECT_THAT(out.str(), HasSubstr("bad refused its input"));
+}
+
+TEST(LauncherTest, ASecuredRunPassesTheDirectoryToEveryProcess) {
+  std::ostringstream out;
+  ProcessSpec server{"server", "sh", {"-c", "echo server $0"}, false};
+  server.secure_args = {"{security_dir}/server.xml"};
+  LaunchOptions options{"", "", {}, 5.0, {}};
+  options.security_dir = "/keys";
+  RunGraph(Graph({{"stickrep", "echo", {"args:"}}, server}, ""), options, out);
+  EXPECT_THAT(out.str(), HasSubstr("stickrep | args: --security-dir /keys"));
+  EXPECT_THAT(out.str(), HasSubstr("server   | server /keys/server.xml"));
+}
+
 }  // namespace
 }  // namespace stickrep::launch

@@ -19,6 +19,13 @@ void AddDeploymentOptions(CLI::App& app, DeploymentOptions& o) {
                  "makes this process a discovery-server client");
   app.add_option("--host", o.host, "label of the host this process runs on, sent in its "
                                    "heartbeat (default: the host name)");
+  app.add_option("--security-dir", o.security_dir,
+                 "DDS Security: authenticate, check permissions and encrypt with the "
+                 "identities, governance and permissions of this directory "
+                 "(deploy/security/make-keys.sh makes it)");
+  app.add_option("--security-identity", o.security_identity,
+                 "the identity of the security directory this participant is (default: "
+                 "the process's name, e.g. executive)");
 }
 
 ParticipantConfig MakeParticipantConfig(const SystemConfig& system, const DeploymentOptions& o,
@@ -32,6 +39,15 @@ ParticipantConfig MakeParticipantConfig(const SystemConfig& system, const Deploy
     c.profile_name = o.profile_name;
   }
   c.discovery_servers = SplitServerList(o.discovery_servers);
+  if (!o.security_dir.empty()) {
+    const std::string prefix = "stickrep-";
+    std::string identity = o.security_identity;
+    if (identity.empty()) {
+      identity = participant_name.rfind(prefix, 0) == 0 ? participant_name.substr(prefix.size())
+                                                        : participant_name;
+    }
+    c.security = SecurityConfig{o.security_dir, identity};
+  }
   return c;
 }
 
@@ -54,6 +70,18 @@ std::vector<std::string> SplitServerList(const std::string& text) {
     }
   }
   return out;
+}
+
+void WatchAuthentication(const Participant& participant, Executor& executor,
+                         std::shared_ptr<spdlog::logger> log) {
+  auto logged = std::make_shared<size_t>(0);
+  executor.AddTimer(1.0, [&participant, log, logged] {
+    const auto refused = participant.discovery().Refused();
+    for (; *logged < refused.size(); ++*logged) {
+      log->warn("DDS Security: participant {} failed authentication: ignored",
+                refused[*logged]);
+    }
+  });
 }
 
 void WatchDiscoveryServers(const Participant& participant, Executor& executor,

@@ -95,6 +95,29 @@ void DiscoveryListener::on_participant_discovery(
   }
 }
 
+void DiscoveryListener::onParticipantAuthentication(
+    dds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) {
+  using Info = eprosima::fastrtps::rtps::ParticipantAuthenticationInfo;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (info.status == Info::AUTHORIZED_PARTICIPANT) {
+    authenticated_++;
+  } else {
+    std::ostringstream prefix;
+    prefix << info.guid.guidPrefix;
+    refused_.push_back(prefix.str());
+  }
+}
+
+int DiscoveryListener::Authenticated() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return authenticated_;
+}
+
+std::vector<std::string> DiscoveryListener::Refused() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return refused_;
+}
+
 std::vector<std::string> DiscoveryListener::Participants() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::string> out;

@@ -52,6 +52,12 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
   void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
+  // DDS Security: a remote participant authenticated, or refused (its GUID kept).
+  void onParticipantAuthentication(
+      eprosima::fastdds::dds::DomainParticipant*,
+      eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override;
+  int Authenticated() const;
+  std::vector<std::string> Refused() const;
   std::vector<DiscoveredEndpoint> Endpoints() const;
   // Names of the remote participants alive now.
   std::vector<std::string> Participants() const;
@@ -64,6 +70,8 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
   std::map<std::string, DiscoveredEndpoint> by_guid_;
   std::map<std::string, std::string> participants_;  // GUID prefix -> name
   std::vector<std::string> servers_;
+  int authenticated_ = 0;
+  std::vector<std::string> refused_;
 };
 
 // Folds endpoints into one summary per topic, sorted by topic name.

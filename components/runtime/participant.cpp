@@ -179,12 +179,23 @@ dds::DomainParticipantQos Participant::LoadQos() {
   using Protocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t;
   if (discovery.discoveryProtocol == Protocol::CLIENT ||
       discovery.discoveryProtocol == Protocol::SUPER_CLIENT) {
+    if (config_.security.enabled()) {
+      // A secured server's GUID prefix comes from its certificate.
+      for (auto& server : discovery.m_DiscoveryServers) {
+        server.guidPrefix = SecuredServerPrefix(config_.security, server.guidPrefix);
+      }
+    }
     std::vector<std::string> prefixes;
     for (const auto& server : discovery.m_DiscoveryServers) {
       prefixes.push_back(PrefixText(server.guidPrefix));
     }
     discovery_.SetServers(prefixes);
     servers_text_ = LocatorsText(discovery.m_DiscoveryServers);
+  }
+  if (config_.security.enabled()) {
+    const bool simple = discovery.discoveryProtocol == Protocol::SIMPLE;
+    ApplySecurity(config_.security, pqos,
+                  simple ? DiscoveryKind::kSimple : DiscoveryKind::kDiscoveryServer);
   }
   return pqos;
 }
@@ -197,8 +208,12 @@ Participant::Participant(const ParticipantConfig& config, QosCatalog catalog)
   participant_ = factory->create_participant(config_.domain_id, pqos, &discovery_,
                                              dds::StatusMask::none());
   if (participant_ == nullptr) {
-    throw std::runtime_error("could not create a DDS participant on domain " +
-                             std::to_string(config_.domain_id));
+    throw std::runtime_error(
+        "could not create a DDS participant on domain " + std::to_string(config_.domain_id) +
+        (config_.security.enabled()
+             ? " (the security plugins refused identity '" + config_.security.identity +
+                   "' of " + config_.security.dir + ": their reason is logged above)"
+             : ""));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
@@ -259,7 +274,13 @@ dds::DataWriter* Participant::CreateDataWriter(const std::string& topic, dds::To
   dds::Topic* t = GetTopic(topic, type);
   dds::DataWriter* writer = publisher_->create_datawriter(
       t, ToDataWriterQos(profile, publisher_->get_default_datawriter_qos()), listener);
-  if (writer == nullptr) throw std::runtime_error("could not create a DDS writer on " + topic);
+  if (writer == nullptr) {
+    throw std::runtime_error("could not create a DDS writer on " + topic +
+                             (config_.security.enabled()
+                                  ? " (identity '" + config_.security.identity +
+                                        "' may not publish it?)"
+                                  : ""));
+  }
   return writer;
 }
 
@@ -269,7 +290,13 @@ dds::DataReader* Participant::CreateDataReader(const std::string& topic, dds::To
   dds::Topic* t = GetTopic(topic, type);
   dds::DataReader* reader = subscriber_->create_datareader(
       t, ToDataReaderQos(profile, subscriber_->get_default_datareader_qos()), listener);
-  if (reader == nullptr) throw std::runtime_error("could not create a DDS reader on " + topic);
+  if (reader == nullptr) {
+    throw std::runtime_error("could not create a DDS reader on " + topic +
+                             (config_.security.enabled()
+                                  ? " (identity '" + config_.security.identity +
+                                        "' may not subscribe to it?)"
+                                  : ""));
+  }
   return reader;
 }
 

@@ -17,6 +17,7 @@
 
 #include "runtime/discovery.h"
 #include "runtime/qos_catalog.h"
+#include "runtime/security.h"
 
 namespace stickrep::runtime {
 
@@ -41,6 +42,8 @@ struct ParticipantConfig {
   // shared-memory port held every writing process up for seconds, where a full UDP socket
   // only loses that observer's samples. A profile that names its own transports keeps them.
   bool shared_memory = true;
+  // DDS Security (authentication, access control, encryption); off when its dir is empty.
+  SecurityConfig security = {};
 };
 
 // Checks that a Fast DDS XML profile file exists and is well-formed XML; throws InputError
@@ -63,6 +66,8 @@ class Participant {
   const QosCatalog& catalog() const { return catalog_; }
   const std::string& name() const { return config_.name; }
   int domain_id() const { return config_.domain_id; }
+  // The DDS Security identity it authenticates as; "" when not secured.
+  const std::string& security_identity() const { return config_.security.identity; }
   eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
   // What discovery has found: remote participants, writers and readers, servers reached.
   const DiscoveryListener& discovery() const { return discovery_; }

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <sstream>
+
 #include "common/input_error.h"
 #include "runtime/deployment_options.h"
 #include "runtime/system_config.h"
@@ -35,6 +38,57 @@ TEST(ParticipantTest, WithoutProfileOrServersDiscoveryIsSimple) {
   Participant p(ParticipantConfig{TestDomainId(), "test", "", "", {}}, Catalog());
   EXPECT_FALSE(p.discovery().UsesServers());
   EXPECT_EQ(p.servers_text(), "");
+}
+
+// Security material made once for these tests by the shipped script.
+std::string Keys() {
+  static const std::string dir = [] {
+    const std::string d = ::testing::TempDir() + "/stickrep_keys_" + std::to_string(getpid());
+    const std::string command = "bash " + std::string(STICKREP_SOURCE_DIR) +
+                                "/deploy/security/make-keys.sh " + d + " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return d;
+  }();
+  return dir;
+}
+
+TEST(ParticipantTest, ASecuredDiscoveryServersPrefixIsTheOneItsCertificateGivesIt) {
+  // What fast-discovery-server -i 0 -x DIR/discovery_server.xml prints as its prefix: it
+  // depends only on the certificate's subject and the prefix of server id 0.
+  eprosima::fastrtps::rtps::GuidPrefix_t id0;
+  std::istringstream("44.53.00.5f.45.50.52.4f.53.49.4d.41") >> id0;
+  std::ostringstream text;
+  text << SecuredServerPrefix(SecurityConfig{Keys(), "sonar"}, id0);
+  EXPECT_EQ(text.str(), "90.2e.c0.55.1d.0f.25.ff.38.7f.fc.76");
+}
+
+TEST(ParticipantTest, ASecuredParticipantAuthenticatesWithItsIdentity) {
+  ParticipantConfig c{TestDomainId(), "stickrep-sonar", "", "", {}};
+  c.security = SecurityConfig{Keys(), "sonar"};
+  EXPECT_NO_THROW(Participant(c, Catalog()));
+}
+
+TEST(ParticipantTest, AMissingSecurityFileIsBadInputNamingIt) {
+  ParticipantConfig c{TestDomainId(), "stickrep-sonar", "", "", {}};
+  c.security = SecurityConfig{Keys(), "wheel"};
+  try {
+    Participant p(c, Catalog());
+    FAIL() << "an identity that is not there was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no identity 'wheel'"), std::string::npos) << e.what();
+  }
+  c.security = SecurityConfig{Keys() + "/nowhere", "sonar"};
+  EXPECT_THROW(Participant(c, Catalog()), InputError);
+}
+
+TEST(ParticipantTest, SecuredAProcessIsTheIdentityOfItsName) {
+  DeploymentOptions o;
+  o.security_dir = "/keys";
+  SystemConfig system;
+  EXPECT_EQ(MakeParticipantConfig(system, o, "stickrep-executive").security.identity, "executive");
+  o.security_identity = "console";
+  EXPECT_EQ(MakeParticipantConfig(system, o, "stickrep-record").security.identity, "console");
+  EXPECT_FALSE(MakeParticipantConfig(system, DeploymentOptions{}, "x").security.enabled());
 }
 
 TEST(ParticipantTest, SplitServerListTakesCommasAndSemicolons) {

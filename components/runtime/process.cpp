@@ -144,6 +144,11 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
     log->info("configured on domain {} on host '{}' ({})", system->domain_id, host,
               options.config_file);
     WatchDiscoveryServers(*participant, executor, log);
+    if (!options.deployment.security_dir.empty()) {
+      log->info("secured: identity '{}' of {}", participant->security_identity(),
+                options.deployment.security_dir);
+      WatchAuthentication(*participant, executor, log);
+    }
 
     node->Activate();
     status.Publish(StatusReporter::State::kActive, "active");

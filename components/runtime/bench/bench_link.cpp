@@ -13,6 +13,7 @@
 #include "common/strict_yaml.h"
 #include "runtime/endpoint.h"
 #include "runtime/process.h"
+#include "runtime/security.h"
 #include "sensorsPubSubTypes.h"
 
 namespace stickrep::runtime::bench {
@@ -29,6 +30,7 @@ ParticipantConfig MakeConfig(const LinkConfig& c) {
   config.profile_xml = c.profile_xml;
   config.domain_id = c.domain_id;
   config.name = c.name;
+  if (!c.security_dir.empty()) config.security = SecurityConfig{c.security_dir, "bench"};
   return config;
 }
 
@@ -114,6 +116,7 @@ void RawLink::CreateParticipant(const LinkConfig& c) {
   auto* factory = dds::DomainParticipantFactory::get_instance();
   dds::DomainParticipantQos pqos = factory->get_default_participant_qos();
   pqos.name(c.name);
+  if (!c.security_dir.empty()) ApplySecurity(SecurityConfig{c.security_dir, "bench"}, pqos);
   participant_ = factory->create_participant(c.domain_id, pqos);
   if (participant_ == nullptr) {
     throw std::runtime_error("could not create a DDS participant on domain " +

@@ -26,6 +26,9 @@ struct LinkConfig {
   std::string out_topic;
   std::string in_topic;
   std::string profile_xml;  // Fast DDS XML file whose default profile both sides use ("": none)
+  // DDS Security from deploy/security/make-keys.sh's directory, as identity "bench" (its
+  // governance protects bench/* as commands and camera frames are); "": plain DDS.
+  std::string security_dir;
 };
 
 // One side of the ping-pong: a writer on `out_topic` and a reader on `in_topic` whose

@@ -55,6 +55,7 @@ struct Options {
   std::string qos_file = DefaultConfigDir() + "/qos.yaml";
   std::string fastdds_profile;
   std::string echo_prefix;
+  std::string security_dir;
   bool json = false;
 };
 
@@ -78,7 +79,8 @@ int RunEcho(const Options& o) {
   std::atomic<PingPongLink*> ready{nullptr};
   std::unique_ptr<PingPongLink> link = MakeLink(
       ParseImpl(o.impls.front()),
-      LinkConfig{o.domain, "stickrep-bench-echo", catalog, kPongTopic, kPingTopic, o.fastdds_profile},
+      LinkConfig{o.domain, "stickrep-bench-echo", catalog, kPongTopic, kPingTopic,
+                 o.fastdds_profile, o.security_dir},
       [&](const msgs::Image& ping) {
         PingPongLink* l = ready.load();
         if (l == nullptr) return;
@@ -101,6 +103,7 @@ std::vector<std::string> EchoArgs(const Options& o, Impl impl, const std::string
   if (!o.fastdds_profile.empty()) {
     args.insert(args.end(), {"--fastdds-profile", o.fastdds_profile});
   }
+  if (!o.security_dir.empty()) args.insert(args.end(), {"--security-dir", o.security_dir});
   return args;
 }
 
@@ -207,7 +210,7 @@ std::vector<CaseResult> RunImplProfile(const Options& o, Impl impl, const std::s
   std::unique_ptr<PingPongLink> link =
       MakeLink(impl,
                LinkConfig{o.domain, "stickrep-bench-driver", catalog, kPingTopic, kPongTopic,
-                          o.fastdds_profile},
+                          o.fastdds_profile, o.security_dir},
                [&sink](const msgs::Image& pong) { sink.OnPong(pong); });
   WaitForEcho(*link, echo, o);
   std::vector<CaseResult> results;
@@ -301,6 +304,9 @@ void AddOptions(CLI::App& app, Options& o) {
                  "Fast DDS XML file whose default participant profile both implementations "
                  "use (e.g. UDP only, initial peers)")
       ->check(CLI::ExistingFile);
+  app.add_option("--security-dir", o.security_dir,
+                 "DDS Security on both sides (deploy/security/make-keys.sh DIR; identity "
+                 "'bench', whose topics are encrypted as commands and camera frames are)");
   app.add_option("--echo-prefix", o.echo_prefix,
                  "command the echo is run under, e.g. \"ip netns exec NS\"");
   app.add_flag("--json", o.json, "print JSON on stdout (the table then goes to stderr)");
@@ -317,6 +323,7 @@ int Main(int argc, char** argv) {
   }
   // The echo may run in another directory context (ip netns exec): absolute paths.
   o.qos_file = std::filesystem::absolute(o.qos_file).string();
+  if (!o.security_dir.empty()) o.security_dir = std::filesystem::absolute(o.security_dir).string();
   if (!o.fastdds_profile.empty()) {
     o.fastdds_profile = std::filesystem::absolute(o.fastdds_profile).string();
   }
