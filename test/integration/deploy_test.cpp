@@ -24,24 +24,6 @@
 namespace stickrep::test {
 namespace {
 
-std::string SourcePath(const std::string& rel) { return std::string(STICKREP_SOURCE_DIR) + "/" + rel; }
-
-double WallNowS() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-// Runs a shell command; its exit code and output.
-std::pair<int, std::string> Shell(const std::string& command) {
-  std::string out;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return {-1, ""};
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
 
 // One base station and one robot on their own namespaces (NAME-base, NAME-robot), a domain
 // of their own, each graph run by stickrep-launch; everything is removed at the end, also

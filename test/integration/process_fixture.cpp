@@ -2,9 +2,12 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +19,26 @@ std::string BinPath(const std::string& name) { return std::string(STICKREP_BINAR
 
 std::string ConfigPath(const std::string& name) {
   return std::string(STICKREP_SOURCE_DIR) + "/configs/" + name;
+}
+
+std::string SourcePath(const std::string& rel) {
+  return std::string(STICKREP_SOURCE_DIR) + "/" + rel;
+}
+
+double WallNowS() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+std::pair<int, std::string> Shell(const std::string& command) {
+  std::string out;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return {-1, ""};
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 std::string WriteTempFile(const std::string& name, const std::string& text) {

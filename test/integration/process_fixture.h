@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "launch/child_process.h"
@@ -67,6 +68,13 @@ class ProcessFixture : public ::testing::Test {
 std::string BinPath(const std::string& name);
 // configs/<name>
 std::string ConfigPath(const std::string& name);
+// A file of the source tree, by its path relative to the top.
+std::string SourcePath(const std::string& rel);
+// Seconds on a monotonic clock.
+double WallNowS();
+// Runs a shell command (stderr joined to stdout): its exit code (-1 if it did not exit) and
+// its output.
+std::pair<int, std::string> Shell(const std::string& command);
 // Writes `text` to a fresh file under the test's temporary directory; returns its path.
 std::string WriteTempFile(const std::string& name, const std::string& text);
 // A shipped config file (configs/<file>) with some keys of its section replaced.

@@ -46,26 +46,6 @@ constexpr int kControlDomain = 61;   // the Cyclone peer beside a plain reader, 
 constexpr double kAttackWindowS = 8.0;
 constexpr const char* kGoalTarget = "wing1_corridor/60";
 
-std::string SourcePath(const std::string& rel) {
-  return std::string(STICKREP_SOURCE_DIR) + "/" + rel;
-}
-
-double WallNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-std::pair<int, std::string> Shell(const std::string& command) {
-  std::string out;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return {-1, ""};
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
 runtime::QosCatalog Catalog() { return runtime::QosCatalog::LoadFile(ConfigPath("qos.yaml")); }
 
 runtime::ParticipantConfig Config(int domain, const std::string& name,
@@ -171,6 +151,33 @@ class SecuredStackTest : public ::testing::Test {
     EXPECT_EQ(g_stack->goal_results.size(), results_before)
         << "the executive answered a goal of the attacker";
     EXPECT_EQ(g_stack->mission_state, "LOCALIZED");
+  }
+
+  // From `who`: goals and motion commands for the attack window; nothing may move, no topic
+  // of the stack may be discovered and no reader may match. Prints what was tried.
+  static void AttackWithGoalsAndCommands(runtime::Participant& who, const std::string& goal_id,
+                                         const std::string& label) {
+    runtime::Writer<msgs::MissionGoalPubSubType> goals(who, "mission/goal");
+    runtime::Writer<msgs::MotionCommandPubSubType> commands(who, "robot/motion/command");
+    msgs::MissionGoal goal;
+    goal.goal_id(goal_id);
+    goal.target(kGoalTarget);
+    msgs::MotionCommand command;
+    command.mode(msgs::MOTION_FOLLOW_HALLWAY);
+    command.linear_speed_ftps(2.6);
+    ExpectNothingMovesDuring([&] {
+      goals.Publish(goal, runtime::WallClockNowNs());
+      commands.Publish(command, runtime::WallClockNowNs());
+    });
+    const auto topics = StackTopics(who);
+    EXPECT_TRUE(topics.empty()) << "discovered: " << Join(topics);
+    EXPECT_EQ(goals.counters().matched.load(), 0);
+    EXPECT_EQ(commands.counters().matched.load(), 0);
+    std::printf("[security] %s: %llu goals and %llu motion commands written; topics "
+                "discovered: %s; readers matched: %d\n",
+                label.c_str(), static_cast<unsigned long long>(goals.counters().samples.load()),
+                static_cast<unsigned long long>(commands.counters().samples.load()),
+                Join(topics).c_str(), goals.counters().matched.load());
   }
 };
 
@@ -371,27 +378,7 @@ TEST_F(SecuredStackTest, CameraIdentityWithSelfSignedPermissionsIsNotMatchedAndM
   ASSERT_EQ(rc, 0) << out;
   runtime::Participant camera(Config(kDomain, "stickrep-camera-impostor", dir, "camera"),
                               Catalog());
-  runtime::Writer<msgs::MissionGoalPubSubType> goals(camera, "mission/goal");
-  runtime::Writer<msgs::MotionCommandPubSubType> commands(camera, "robot/motion/command");
-  msgs::MissionGoal goal;
-  goal.goal_id("camera");
-  goal.target(kGoalTarget);
-  msgs::MotionCommand command;
-  command.mode(msgs::MOTION_FOLLOW_HALLWAY);
-  command.linear_speed_ftps(2.6);
-  ExpectNothingMovesDuring([&] {
-    goals.Publish(goal, runtime::WallClockNowNs());
-    commands.Publish(command, runtime::WallClockNowNs());
-  });
-  const auto topics = StackTopics(camera);
-  EXPECT_TRUE(topics.empty()) << "discovered: " << Join(topics);
-  EXPECT_EQ(goals.counters().matched.load(), 0);
-  EXPECT_EQ(commands.counters().matched.load(), 0);
-  std::printf("[security] camera identity with self-signed permissions: %llu goals and %llu "
-              "motion commands written; topics discovered: %s; readers matched: %d\n",
-              static_cast<unsigned long long>(goals.counters().samples.load()),
-              static_cast<unsigned long long>(commands.counters().samples.load()),
-              Join(topics).c_str(), goals.counters().matched.load());
+  AttackWithGoalsAndCommands(camera, "camera", "camera identity with self-signed permissions");
 }
 
 TEST_F(SecuredStackTest, IdentityOfAnotherCaIsNotAuthenticatedAndMovesNothing) {
@@ -399,30 +386,10 @@ TEST_F(SecuredStackTest, IdentityOfAnotherCaIsNotAuthenticatedAndMovesNothing) {
   // commands) are all genuine, but made by a CA the stack does not trust.
   runtime::Participant forged(
       Config(kDomain, "stickrep-executive", g_stack->rogue_keys, "executive"), Catalog());
-  runtime::Writer<msgs::MissionGoalPubSubType> goals(forged, "mission/goal");
-  runtime::Writer<msgs::MotionCommandPubSubType> commands(forged, "robot/motion/command");
-  msgs::MissionGoal goal;
-  goal.goal_id("forged");
-  goal.target(kGoalTarget);
-  msgs::MotionCommand command;
-  command.mode(msgs::MOTION_FOLLOW_HALLWAY);
-  command.linear_speed_ftps(2.6);
-  ExpectNothingMovesDuring([&] {
-    goals.Publish(goal, runtime::WallClockNowNs());
-    commands.Publish(command, runtime::WallClockNowNs());
-  });
-  const auto topics = StackTopics(forged);
-  EXPECT_TRUE(topics.empty()) << "discovered: " << Join(topics);
-  EXPECT_EQ(goals.counters().matched.load(), 0);
-  EXPECT_EQ(commands.counters().matched.load(), 0);
+  AttackWithGoalsAndCommands(forged, "forged", "forged executive (other CA)");
   // The stack's processes say so (WatchAuthentication, checked every second).
   EXPECT_TRUE(WaitFor([] { return StackSaid("failed authentication: ignored"); }, 5.0))
       << Output();
-  std::printf("[security] forged executive (other CA): %llu goals and %llu motion commands "
-              "written; topics discovered: %s; readers matched: %d\n",
-              static_cast<unsigned long long>(goals.counters().samples.load()),
-              static_cast<unsigned long long>(commands.counters().samples.load()),
-              Join(topics).c_str(), goals.counters().matched.load());
 }
 
 // Last, as it moves the robot: the console's identity may send goals, and the executive
