@@ -26,7 +26,7 @@ std::string SourcePath(const std::string& rel) {
 }
 
 double WallNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 

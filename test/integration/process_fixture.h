@@ -70,7 +70,8 @@ std::string BinPath(const std::string& name);
 std::string ConfigPath(const std::string& name);
 // A file of the source tree, by its path relative to the top.
 std::string SourcePath(const std::string& rel);
-// Seconds on a monotonic clock.
+// Seconds since the epoch on the wall clock: comparable with the simulated time the
+// virtual robot stamps at real-time factor 1.
 double WallNowS();
 // Runs a shell command (stderr joined to stdout): its exit code (-1 if it did not exit) and
 // its output.
