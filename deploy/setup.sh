@@ -31,6 +31,19 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+# UDP socket buffers of 4 MB (the processes ask for them; the kernel caps them here): room
+# for the fragments of several 250 kB camera frames, which go over UDP also within one host
+# (docs/reliability.md, "Supervision"). Only raised, never lowered.
+for key in net.core.rmem_max net.core.wmem_max; do
+  if [ "$(sysctl -n "$key" 2>/dev/null || echo 0)" -lt 4194304 ]; then
+    if [ "$(id -u)" -eq 0 ] && sysctl -q -w "$key=4194304" 2>/dev/null; then
+      echo "setup: $key raised to 4194304"
+    else
+      echo "setup: $key is below 4194304; as root: sysctl -w $key=4194304" >&2
+    fi
+  fi
+done
+
 # Two cores: build with -j2. Generated IDL code is rebuilt only when an .idl file changes.
 # build/'s ctest also runs the sanitized unit suite of build/asan, once that is built.
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSTICKREP_EXTRA_TEST_DIRS=asan \

@@ -65,7 +65,7 @@ DomainSession JoinDomain(const std::string& system_file, int domain_id,
   if (domain_id >= 0) s.system.domain_id = domain_id;
   runtime::ParticipantConfig config = runtime::MakeParticipantConfig(s.system, deployment, name);
   config.announcement_period_s = announcement_period_s;
-  config.shared_memory = shared_memory;
+  config.shared_memory = shared_memory && s.system.shared_memory;
   s.participant = std::make_unique<runtime::Participant>(
       config, runtime::QosCatalog::LoadFile(s.system.qos_file));
   s.listener = &s.participant->discovery();

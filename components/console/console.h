@@ -44,7 +44,8 @@ struct DomainSession {
 // Joins the domain of `system_file` (or `domain_id` when >= 0) as `name`; through a
 // discovery server, waits (at most max(5 s, wait_s)) until one is reached and says so on
 // stderr when none is. Throws InputError for bad settings.
-// `shared_memory` false: UDP only (runtime::ParticipantConfig::shared_memory).
+// `shared_memory` false: UDP only, whatever the system file says
+// (runtime::ParticipantConfig::shared_memory).
 DomainSession JoinDomain(const std::string& system_file, int domain_id,
                          const runtime::DeploymentOptions& deployment, const std::string& name,
                          double wait_s, double announcement_period_s = 0.0,

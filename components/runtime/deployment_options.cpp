@@ -39,6 +39,7 @@ ParticipantConfig MakeParticipantConfig(const SystemConfig& system, const Deploy
     c.profile_name = o.profile_name;
   }
   c.discovery_servers = SplitServerList(o.discovery_servers);
+  c.shared_memory = system.shared_memory;
   if (!o.security_dir.empty()) {
     const std::string prefix = "stickrep-";
     std::string identity = o.security_identity;

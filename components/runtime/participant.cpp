@@ -6,8 +6,10 @@
 
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <typeinfo>
@@ -22,6 +24,11 @@ using eprosima::fastrtps::Duration_t;
 using eprosima::fastrtps::types::ReturnCode_t;
 
 namespace {
+
+// A shared-memory segment, and UDP socket buffers, that hold several 250 kB camera frames
+// (the kernel caps the buffers at net.core.rmem_max / wmem_max: deploy/setup.sh raises them).
+constexpr uint32_t kSharedMemorySegmentBytes = 4u << 20;
+constexpr uint32_t kUdpSocketBufferBytes = 4u << 20;
 
 Duration_t ToDuration(double seconds) {
   if (seconds <= 0.0) return eprosima::fastrtps::c_TimeInfinite;
@@ -156,8 +163,22 @@ dds::DomainParticipantQos Participant::LoadQos() {
   if (!config_.shared_memory && transport.use_builtin_transports) {
     transport.use_builtin_transports = false;
     if (transport.user_transports.empty()) {
-      transport.user_transports.push_back(
-          std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>());
+      auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+      udp->sendBufferSize = kUdpSocketBufferBytes;
+      udp->receiveBufferSize = kUdpSocketBufferBytes;
+      transport.user_transports.push_back(udp);
+    }
+  } else if (config_.shared_memory && !transport.use_builtin_transports) {
+    // A profile that names its own transports: shared memory beside them, unless named.
+    const bool named = std::any_of(
+        transport.user_transports.begin(), transport.user_transports.end(), [](const auto& t) {
+          return std::dynamic_pointer_cast<eprosima::fastdds::rtps::SharedMemTransportDescriptor>(
+                     t) != nullptr;
+        });
+    if (!named) {
+      auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
+      shm->segment_size(kSharedMemorySegmentBytes);
+      transport.user_transports.insert(transport.user_transports.begin(), shm);
     }
   }
   auto& discovery = pqos.wire_protocol().builtin.discovery_config;

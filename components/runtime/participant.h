@@ -37,11 +37,16 @@ struct ParticipantConfig {
   // participant that joins a running domain and must be found at once (the recorder) uses
   // a short period: a participant that appears later learns of it within that time.
   double announcement_period_s = 0.0;
-  // Shared memory beside UDP, as Fast DDS has it by default. An observer of the robot's
-  // streams (the console, the recorder) turns it off: a stopped observer's full
-  // shared-memory port held every writing process up for seconds, where a full UDP socket
-  // only loses that observer's samples. A profile that names its own transports keeps them.
-  bool shared_memory = true;
+  // Shared memory beside UDP, as Fast DDS has it by default. Off unless asked for
+  // (system.shared_memory), for two faults of Fast DDS 2.9's shared-memory transport:
+  // - a process killed and restarted on the same host reopens its dead predecessor's port
+  //   as a new segment while the other processes keep writing into the old one, so the new
+  //   process misses them for good (eProsima/Fast-DDS#4728): 15 of 25 executives killed
+  //   and restarted in a row never heard some or all of the processes they wait for;
+  // - a stopped observer's full port held every writing process up for seconds, where a
+  //   full UDP socket only loses that observer's samples.
+  // A profile that names its own transports keeps them.
+  bool shared_memory = false;
   // DDS Security (authentication, access control, encryption); off when its dir is empty.
   SecurityConfig security = {};
 };

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
+
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 
 #include "common/input_error.h"
 #include "runtime/deployment_options.h"
@@ -38,6 +42,46 @@ TEST(ParticipantTest, WithoutProfileOrServersDiscoveryIsSimple) {
   Participant p(ParticipantConfig{TestDomainId(), "test", "", "", {}}, Catalog());
   EXPECT_FALSE(p.discovery().UsesServers());
   EXPECT_EQ(p.servers_text(), "");
+}
+
+bool HasTransport(Participant& p, bool shared_memory) {
+  const auto& t = p.dds()->get_qos().transport();
+  return std::any_of(t.user_transports.begin(), t.user_transports.end(), [&](const auto& d) {
+    return shared_memory
+               ? std::dynamic_pointer_cast<eprosima::fastdds::rtps::SharedMemTransportDescriptor>(
+                     d) != nullptr
+               : std::dynamic_pointer_cast<eprosima::fastdds::rtps::UDPv4TransportDescriptor>(
+                     d) != nullptr;
+  });
+}
+
+TEST(ParticipantTest, ByDefaultProcessesTalkOverUdpOnly) {
+  Participant p(ParticipantConfig{TestDomainId(), "test", "", "", {}}, Catalog());
+  EXPECT_FALSE(p.dds()->get_qos().transport().use_builtin_transports);
+  EXPECT_TRUE(HasTransport(p, /*shared_memory=*/false));
+  EXPECT_FALSE(HasTransport(p, /*shared_memory=*/true));
+}
+
+TEST(ParticipantTest, SharedMemoryAskedForIsUsedAlsoBesideAProfilesOwnTransports) {
+  ParticipantConfig plain{TestDomainId(), "test", "", "", {}};
+  plain.shared_memory = true;
+  Participant builtin(plain, Catalog());
+  EXPECT_TRUE(builtin.dds()->get_qos().transport().use_builtin_transports);
+
+  ParticipantConfig profiled{TestDomainId(), "test", kClientXml, "", {}};
+  Participant udp_only(profiled, Catalog());
+  EXPECT_FALSE(HasTransport(udp_only, /*shared_memory=*/true));
+  profiled.shared_memory = true;
+  Participant both(profiled, Catalog());
+  EXPECT_TRUE(HasTransport(both, /*shared_memory=*/true));
+  EXPECT_TRUE(HasTransport(both, /*shared_memory=*/false));
+}
+
+TEST(ParticipantTest, TheSystemFileDecidesSharedMemory) {
+  SystemConfig system;
+  EXPECT_FALSE(MakeParticipantConfig(system, {}, "stickrep-sonar").shared_memory);
+  system.shared_memory = true;
+  EXPECT_TRUE(MakeParticipantConfig(system, {}, "stickrep-sonar").shared_memory);
 }
 
 // Security material made once for these tests by the shipped script.

@@ -91,6 +91,22 @@ TEST(SystemConfigTest, ShippedSystemFileResolvesPathsNextToIt) {
   EXPECT_THAT(s.map_file, HasSubstr("maps/engineering_building_3f.yaml"));
 }
 
+TEST(SystemConfigTest, SharedMemoryIsOffUnlessTheFileTurnsItOn) {
+  const std::string base =
+      "system:\n  domain_id: 1\n  qos_file: q.yaml\n  robot_file: r.yaml\n  map_file: m.yaml\n";
+  EXPECT_FALSE(SystemConfig::Load(StrictYaml::LoadString(base, "system.yaml")).shared_memory);
+  EXPECT_FALSE(SystemConfig::LoadFile(DefaultConfigDir() + "/system.yaml").shared_memory);
+  EXPECT_TRUE(SystemConfig::Load(StrictYaml::LoadString(base + "  shared_memory: true\n",
+                                                        "system.yaml"))
+                  .shared_memory);
+  try {
+    SystemConfig::Load(StrictYaml::LoadString(base + "  shared_memory: sometimes\n", "system.yaml"));
+    FAIL() << "a value that is not a boolean was taken";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("shared_memory"));
+  }
+}
+
 TEST(SystemConfigTest, DomainIdOutOfRangeIsRejected) {
   const char* text =
       "system:\n  domain_id: 300\n  qos_file: q.yaml\n  robot_file: r.yaml\n  map_file: m.yaml\n";

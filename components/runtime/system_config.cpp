@@ -13,6 +13,7 @@ SystemConfig SystemConfig::Load(const StrictYaml& root) {
   c.qos_file = ResolvePath(s.Get<std::string>("qos_file"), c.file);
   c.fastdds_profile_xml = ResolvePath(s.GetOr<std::string>("fastdds_profile_xml", ""), c.file);
   c.fastdds_profile_name = s.GetOr<std::string>("fastdds_profile_name", "");
+  c.shared_memory = s.GetOr<bool>("shared_memory", false);
   c.robot_file = ResolvePath(s.Get<std::string>("robot_file"), c.file);
   c.map_file = ResolvePath(s.Get<std::string>("map_file"), c.file);
   c.log_level = s.GetOr<std::string>("log_level", "info");

@@ -14,8 +14,11 @@ struct SystemConfig {
   std::string file;
   int domain_id = 0;
   std::string qos_file;
-  std::string fastdds_profile_xml;   // empty: Fast DDS defaults (UDP multicast + SHM)
+  std::string fastdds_profile_xml;   // empty: Fast DDS defaults, UDP only unless shared_memory
   std::string fastdds_profile_name;  // empty: the XML file's default participant profile
+  // Fast DDS's shared-memory transport beside UDP (a profile that names its own transports
+  // keeps them). Off by default: see runtime::ParticipantConfig::shared_memory.
+  bool shared_memory = false;
   std::string robot_file;
   std::string map_file;
   std::string log_level = "info";
