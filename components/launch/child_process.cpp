@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,9 +26,16 @@ ChildProcess::ChildProcess(std::string name, const std::vector<std::string>& arg
   sigset_t all, previous;
   sigfillset(&all);
   sigprocmask(SIG_BLOCK, &all, &previous);
+  const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ == 0) {
     for (const int sig : {SIGINT, SIGTERM, SIGPIPE}) signal(sig, SIG_DFL);
+    // A parent that dies, even by SIGKILL, takes its children along (SIGTERM: they stop
+    // cleanly): a killed launcher (or test) leaves no process running on its domain. The
+    // signal comes when the thread that forked ends: children are started from the thread
+    // that supervises them to the end.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(127);  // the parent died before the line above
     sigprocmask(SIG_SETMASK, &previous, nullptr);
     dup2(fds[1], STDOUT_FILENO);
     dup2(fds[1], STDERR_FILENO);

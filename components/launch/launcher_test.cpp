@@ -3,7 +3,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <fstream>
 #include <sstream>
+#include <thread>
+
+#include "launch/child_process.h"
 
 namespace stickrep::launch {
 namespace {
@@ -18,6 +27,42 @@ LaunchGraph Graph(const std::vector<ProcessSpec>& processes, const std::string& 
   g.until_exit_of = until;
   g.max_duration_s = 30.0;
   return g;
+}
+
+// True when `pid` has ended: gone, or a zombie left for init to reap.
+bool Ended(int pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const auto close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'Z';
+}
+
+TEST(ChildProcessTest, AChildEndsWhenItsParentIsKilled) {
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  const pid_t parent = fork();
+  ASSERT_GE(parent, 0);
+  if (parent == 0) {  // a parent that starts a child, says its pid, and waits to be killed
+    close(fds[0]);
+    ChildProcess child("sleeper", {"sleep", "60"});
+    const int pid = child.pid();
+    if (write(fds[1], &pid, sizeof(pid)) != static_cast<ssize_t>(sizeof(pid))) _exit(1);
+    for (;;) pause();
+  }
+  close(fds[1]);
+  int child = 0;
+  ASSERT_EQ(read(fds[0], &child, sizeof(child)), static_cast<ssize_t>(sizeof(child)));
+  close(fds[0]);
+  ASSERT_FALSE(Ended(child));
+  ASSERT_EQ(kill(parent, SIGKILL), 0);
+  waitpid(parent, nullptr, 0);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!Ended(child) && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_TRUE(Ended(child)) << "the child of a killed parent is still running";
+  if (!Ended(child)) kill(child, SIGKILL);
 }
 
 TEST(LauncherTest, RunEndsWhenTheNamedProcessExitsAndTheRestAreStopped) {
