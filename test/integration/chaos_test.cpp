@@ -40,11 +40,6 @@ constexpr double kMaxStopS = 4.0;
 constexpr int kGoalEdgesAhead = 6;
 const char* const kVictims[] = {"landmark", "localizer", "executive"};
 
-double NowS() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 // Pid of the child of `parent` running build/bin/stickrep-NAME (/proc's comm is cut at 15).
 std::optional<int> ChildPid(int parent, const std::string& name) {
   const std::string comm = ("stickrep-" + name).substr(0, 15);
@@ -155,7 +150,7 @@ class ChaosTest : public ProcessFixture {
     const bool holding = !status_.empty() && (status_.back().state == msgs::MISSION_LOCALIZED ||
                                               status_.back().state == msgs::MISSION_GOAL_REACHED);
     if (!holding || !pose_ || pose_->status() != msgs::LOCALIZATION_LOCALIZED ||
-        NowS() - last_goal_s_ < 3.0) {
+        WallNowS() - last_goal_s_ < 3.0) {
       return;
     }
     const int edge = static_cast<int>(pose_->best().edge_index());
@@ -164,7 +159,7 @@ class ChaosTest : public ProcessFixture {
     goal.goal_id("chaos" + std::to_string(++goals_sent_));
     goal.target(pose_->best().ring_id() + "/" + std::to_string(target % kSmallMapEdges));
     goals.Publish(goal, runtime::WallClockNowNs());
-    last_goal_s_ = NowS();
+    last_goal_s_ = WallNowS();
   }
 
   std::vector<StatusSample> status_;
@@ -205,11 +200,11 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
 
   // Kill, every 10-20 s, one of the victims.
   std::vector<Kill> kills;
-  const double chaos_end = NowS() + kChaosS;
+  const double chaos_end = WallNowS() + kChaosS;
   std::uniform_real_distribution<double> interval(10.0, 20.0);
   std::vector<std::string> round;  // the victims not yet killed in this round
-  for (double next = NowS() + interval(rng); next < chaos_end; next += interval(rng)) {
-    SpinUntil([&] { KeepBusy(goal, goals); return NowS() >= next; }, next - NowS() + 60.0);
+  for (double next = WallNowS() + interval(rng); next < chaos_end; next += interval(rng)) {
+    SpinUntil([&] { KeepBusy(goal, goals); return WallNowS() >= next; }, next - WallNowS() + 60.0);
     if (round.empty()) {
       round.assign(std::begin(kVictims), std::end(kVictims));
       std::shuffle(round.begin(), round.end(), rng);
@@ -218,12 +213,12 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
     round.pop_back();
     const auto pid = ChildPid(launch.pid(), victim);
     ASSERT_TRUE(pid.has_value()) << victim << " is not running\n" << Outputs();
-    kills.push_back({victim, NowS()});
+    kills.push_back({victim, WallNowS()});
     ASSERT_EQ(kill(*pid, SIGKILL), 0);
     std::printf("[chaos] %.1f s: killed %s (pid %d)\n", kills.back().at_s - kills.front().at_s,
                 victim.c_str(), *pid);
   }
-  SpinUntil([&] { KeepBusy(goal, goals); return NowS() >= chaos_end; }, 60.0);
+  SpinUntil([&] { KeepBusy(goal, goals); return WallNowS() >= chaos_end; }, 60.0);
 
   // No more goals: the mission must end holding a pose that names the true place.
   const auto settled = [&] {
@@ -310,6 +305,51 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
   const std::string& end = launch.output();
   const auto table = end.find("\nPROCESS ");
   if (table != std::string::npos) std::printf("[chaos] %s\n", end.substr(table + 1).c_str());
+}
+
+// Restarts in a row on one host: round after round the executive killed and, 4 s later while
+// it is being restarted, the landmark; each round the new executive must hear every process
+// (the new landmark too) and the mission leave waiting and the fault. The scenario in which
+// Fast DDS 2.9's shared memory left new executives deaf for good (docs/reliability.md,
+// "Supervision"); this test did not reproduce that fault in a run over shared memory, so it
+// guards the restarts, not the transport.
+TEST_F(ChaosTest, ExecutiveAndLandmarkKilledInTurnSixTimesAreHeardAgainEachTime) {
+  constexpr int kRounds = 6;
+  runtime::Reader<msgs::MissionStatusPubSubType> status(
+      participant(), executor(), "mission/status", [&](const msgs::MissionStatus& s) {
+        status_.push_back({s.header().stamp_ns() * 1e-9, s.state()});
+      });
+  launch::ChildProcess& launch = Start("stickrep-launch", {Graph()});
+  // Every required process heard, and none absent: the mission runs.
+  const auto running_since = [&](double t_s) {
+    return [&, t_s] {
+      return !status_.empty() && status_.back().stamp_s > t_s &&
+             status_.back().state != msgs::MISSION_WAITING_FOR_COMPONENTS &&
+             status_.back().state != msgs::MISSION_STOPPED_FAULT;
+    };
+  };
+  ASSERT_TRUE(SpinUntil(running_since(0.0), 60.0)) << Outputs();
+  std::vector<double> back_s;
+  for (int round = 1; round <= kRounds; ++round) {
+    double last_kill = 0.0;
+    for (const char* victim : {"executive", "landmark"}) {
+      const auto pid = ChildPid(launch.pid(), victim);
+      ASSERT_TRUE(pid.has_value()) << victim << " is not running\n" << Outputs();
+      last_kill = WallNowS();
+      ASSERT_EQ(kill(*pid, SIGKILL), 0);
+      if (std::string(victim) == "executive") SpinUntil([] { return false; }, 4.0);
+    }
+    // Both restarted after 2-8 s of back-off; the new executive hears them all.
+    ASSERT_TRUE(SpinUntil(running_since(last_kill), 45.0))
+        << "round " << round << ": the mission did not run again\n" << Outputs();
+    back_s.push_back(status_.back().stamp_s - last_kill);
+  }
+  std::printf("[chaos] %d rounds of an executive and a landmark kill: every new process heard, "
+              "the mission running again %.1f s (median) and %.1f s (max) after the second "
+              "kill\n",
+              kRounds, Median(back_s), *std::max_element(back_s.begin(), back_s.end()));
+  launch.Signal(SIGINT);
+  ASSERT_TRUE(launch.WaitExit(40.0)) << Outputs();
 }
 
 }  // namespace
