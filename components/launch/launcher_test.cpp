@@ -29,6 +29,22 @@ LaunchGraph Graph(const std::vector<ProcessSpec>& processes, const std::string& 
   return g;
 }
 
+ProcessSpec Proc(const std::string& name, const std::string& executable,
+                 const std::vector<std::string>& args) {
+  ProcessSpec p;
+  p.name = name;
+  p.executable = executable;
+  p.args = args;
+  return p;
+}
+
+// No bin or config dir, no extra arguments; stopped 5 s after SIGTERM.
+LaunchOptions Options() {
+  LaunchOptions o;
+  o.stop_grace_s = 5.0;
+  return o;
+}
+
 // True when `pid` has ended: gone, or a zombie left for init to reap.
 bool Ended(int pid) {
   std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
@@ -68,10 +84,10 @@ TEST(ChildProcessTest, AChildEndsWhenItsParentIsKilled) {
 TEST(LauncherTest, RunEndsWhenTheNamedProcessExitsAndTheRestAreStopped) {
   std::ostringstream out;
   const auto results =
-      RunGraph(Graph({{"quick", "sh", {"-c", "echo hello; echo 'x stopped: did it'"}},
-                      {"slow", "sleep", {"20"}}},
+      RunGraph(Graph({Proc("quick", "sh", {"-c", "echo hello; echo 'x stopped: did it'"}),
+                      Proc("slow", "sleep", {"20"})},
                      "quick"),
-               LaunchOptions{"", "", {}, 5.0, {}}, out);
+               Options(), out);
   ASSERT_EQ(results.size(), 2u);
   EXPECT_EQ(results[0].exit_code, 0);
   EXPECT_EQ(results[0].last_summary, "did it");
@@ -82,8 +98,8 @@ TEST(LauncherTest, RunEndsWhenTheNamedProcessExitsAndTheRestAreStopped) {
 
 TEST(LauncherTest, ExitCodesAreReported) {
   std::ostringstream out;
-  const auto results = RunGraph(Graph({{"fails", "sh", {"-c", "exit 2"}}}, ""),
-                                LaunchOptions{"", "", {}, 5.0, {}}, out);
+  const auto results = RunGraph(Graph({Proc("fails", "sh", {"-c", "exit 2"})}, ""),
+                                Options(), out);
   EXPECT_EQ(results[0].exit_code, 2);
   EXPECT_THAT(out.str(), HasSubstr("every process exited"));
 }
@@ -99,10 +115,10 @@ ProcessSpec WithRestart(ProcessSpec p, RestartPolicy::When when, int max_restart
 TEST(LauncherTest, AKilledProcessIsRestartedWithADoublingBackOffUpToTheLimit) {
   std::ostringstream out;
   const auto results = RunGraph(
-      Graph({WithRestart({"crashy", "sh", {"-c", "echo up; kill -9 $$"}},
+      Graph({WithRestart(Proc("crashy", "sh", {"-c", "echo up; kill -9 $$"}),
                          RestartPolicy::When::kOnFailure, 3)},
             ""),
-      LaunchOptions{"", "", {}, 5.0, {}}, out);
+      Options(), out);
   ASSERT_EQ(results.size(), 1u);
   EXPECT_EQ(results[0].restarts, 3);
   EXPECT_EQ(results[0].failures, 4);
@@ -120,10 +136,10 @@ TEST(LauncherTest, AKilledProcessIsRestartedWithADoublingBackOffUpToTheLimit) {
 TEST(LauncherTest, OnFailureLeavesACleanExitDownAndAlwaysRestartsIt) {
   std::ostringstream out;
   const auto results = RunGraph(
-      Graph({WithRestart({"clean", "true", {}}, RestartPolicy::When::kOnFailure, 5),
-             WithRestart({"again", "true", {}}, RestartPolicy::When::kAlways, 2)},
+      Graph({WithRestart(Proc("clean", "true", {}), RestartPolicy::When::kOnFailure, 5),
+             WithRestart(Proc("again", "true", {}), RestartPolicy::When::kAlways, 2)},
             ""),
-      LaunchOptions{"", "", {}, 5.0, {}}, out);
+      Options(), out);
   EXPECT_EQ(results[0].restarts, 0);
   EXPECT_EQ(results[1].restarts, 2);
   EXPECT_EQ(results[1].failures, 0);
@@ -134,10 +150,10 @@ TEST(LauncherTest, OnFailureLeavesACleanExitDownAndAlwaysRestartsIt) {
 TEST(LauncherTest, BadInputIsNeverRestartedAndEndsTheRun) {
   std::ostringstream out;
   const auto results = RunGraph(
-      Graph({WithRestart({"bad", "sh", {"-c", "exit 2"}}, RestartPolicy::When::kAlways, 0),
-             {"slow", "sleep", {"20"}}},
+      Graph({WithRestart(Proc("bad", "sh", {"-c", "exit 2"}), RestartPolicy::When::kAlways, 0),
+             Proc("slow", "sleep", {"20"})},
             ""),
-      LaunchOptions{"", "", {}, 5.0, {}}, out);
+      Options(), out);
   EXPECT_EQ(results[0].restarts, 0);
   EXPECT_EQ(results[0].exit_code, 2);
   EXPECT_THAT(out.str(), HasSubstr("bad refused its input"));
@@ -145,11 +161,12 @@ TEST(LauncherTest, BadInputIsNeverRestartedAndEndsTheRun) {
 
 TEST(LauncherTest, ASecuredRunPassesTheDirectoryToEveryProcess) {
   std::ostringstream out;
-  ProcessSpec server{"server", "sh", {"-c", "echo server $0"}, false};
+  ProcessSpec server = Proc("server", "sh", {"-c", "echo server $0"});
+  server.use_common_args = false;
   server.secure_args = {"{security_dir}/server.xml"};
-  LaunchOptions options{"", "", {}, 5.0, {}};
+  LaunchOptions options = Options();
   options.security_dir = "/keys";
-  RunGraph(Graph({{"stickrep", "echo", {"args:"}}, server}, ""), options, out);
+  RunGraph(Graph({Proc("stickrep", "echo", {"args:"}), server}, ""), options, out);
   EXPECT_THAT(out.str(), HasSubstr("stickrep | args: --security-dir /keys"));
   EXPECT_THAT(out.str(), HasSubstr("server   | server /keys/server.xml"));
 }
