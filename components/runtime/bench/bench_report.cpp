@@ -65,7 +65,7 @@ void PrintHeader(std::ostream& out, const RunInfo& info) {
       "throughput: pings written back to back for {:g} s, pongs counted at the driver "
       "(pongs/s and payload MB/s of the pongs, first write to last pong)\n\n",
       info.domain_id, info.qos_file,
-      info.fastdds_profile.empty() ? "Fast DDS default transports"
+      info.fastdds_profile.empty() ? "UDPv4 only (the processes' default)"
                                    : "Fast DDS profile " + info.fastdds_profile,
       info.echo_prefix.empty() ? "" : ", echo run under '" + info.echo_prefix + "'",
       info.rounds, info.samples, info.large_samples, info.sample_timeout_s, info.throughput_s);

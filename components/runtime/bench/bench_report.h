@@ -41,7 +41,7 @@ struct RunInfo {
   int domain_id = 0;
   int rounds = 1;
   std::string qos_file;
-  std::string fastdds_profile;  // empty: Fast DDS default transports
+  std::string fastdds_profile;  // empty: UDPv4 only, as every process by default
   std::string echo_prefix;
   int samples = 0;
   int large_samples = 0;
