@@ -126,7 +126,7 @@ bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& ed
 // no longer sure. The filter's belief is kept either way: it goes on from there.
 bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges) {
   if (edges.empty()) {
-    PublishTracked(estimate_.confidence, tracker_.message());
+    PublishTracked(posterior_, tracker_.message());
     return false;
   }
   ExtendBayes(edges);
@@ -171,11 +171,16 @@ void Localizer::LeaveLocalized(double odometer_in, Status status, const std::str
   estimate_.status = status;
 }
 
-void Localizer::PublishTracked(double confidence, const std::string& message) {
+double Localizer::Confidence(double posterior) const {
+  return bayes_ ? config_.calibration.Calibrated(posterior) : posterior;
+}
+
+void Localizer::PublishTracked(double posterior, const std::string& message) {
   const TrackedPose p = tracker_.pose();
-  estimate_.hypotheses = {MakeHypothesisAt(p.ring, p.edge, p.dir, p.offset_in, confidence)};
+  estimate_.hypotheses = {MakeHypothesisAt(p.ring, p.edge, p.dir, p.offset_in, posterior)};
   estimate_.candidates = 1;
-  estimate_.confidence = confidence;
+  posterior_ = posterior;
+  estimate_.confidence = Confidence(posterior);
   estimate_.status = Status::kLocalized;
   estimate_.message = message;
 }
@@ -219,6 +224,7 @@ void Localizer::Lose(const std::string& why) {
   tracker_.Stop(why);
   ResetRecovery();
   estimate_ = PoseEstimate{};
+  posterior_ = 0.0;
   estimate_.status = Status::kLost;
   estimate_.message = why;
   was_localized_ = false;
@@ -254,6 +260,7 @@ bool Localizer::ExtendDeterministic(const std::vector<map::SensedEdge>& edges) {
       matcher_.Reset();
       assembler_.Restart();
       estimate_ = PoseEstimate{};
+      posterior_ = 0.0;
       estimate_.status = was_localized_ ? Status::kLost : Status::kRecovering;
       estimate_.message = "no place fits the sensed edges: sequence discarded, starting again";
       was_localized_ = false;
@@ -286,7 +293,8 @@ void Localizer::Rebuild(double odometer_in, const std::string& message) {
       estimate_.candidates += b.probability > 1e-3;
     }
     estimate_.edges_sensed = recovery_edges_;
-    estimate_.confidence = top.empty() ? 0.0 : top.front().probability;
+    posterior_ = top.empty() ? 0.0 : top.front().probability;
+    estimate_.confidence = Confidence(posterior_);
     const bool localized = bayes_->status() == recovery::RecoveryStatus::kLocalized;
     estimate_.status = localized ? Status::kLocalized : Status::kRecovering;
     if (localized) was_localized_ = true;
@@ -297,7 +305,8 @@ void Localizer::Rebuild(double odometer_in, const std::string& message) {
   estimate_.edges_sensed = matcher_.length();
   estimate_.status = cands.size() == 1 ? Status::kLocalized : Status::kRecovering;
   if (cands.size() == 1) was_localized_ = true;
-  estimate_.confidence = cands.empty() ? 0.0 : 1.0 / static_cast<double>(cands.size());
+  posterior_ = cands.empty() ? 0.0 : 1.0 / static_cast<double>(cands.size());
+  estimate_.confidence = posterior_;
   for (std::size_t i = 0; i < cands.size() && static_cast<int>(i) < config_.max_hypotheses; ++i) {
     estimate_.hypotheses.push_back(
         MakeHypothesis(cands[i].last, cands[i].dir, past_in, estimate_.confidence));

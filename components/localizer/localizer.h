@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "localizer/confidence_calibration.h"
 #include "localizer/edge_assembler.h"
 #include "localizer/pose_tracker.h"
 #include "recovery/bayes_localizer.h"
@@ -33,6 +34,8 @@ struct PoseEstimate {
   std::size_t candidates = 0;
   int edges_sensed = 0;            // in the current sequence
   std::vector<Hypothesis> hypotheses;  // best first; empty while nothing is sensed
+  // Bayes: the best place's calibrated confidence (the hypotheses carry the filter's raw
+  // posterior); deterministic: 1 / candidates.
   double confidence = 0.0;
   std::string message;
 };
@@ -67,6 +70,8 @@ struct LocalizerConfig {
   // there.
   double keep_threshold = 0.9;
   double lost_threshold = 0.05;
+  // Bayes: the published confidence from the filter's posterior (identity by default).
+  ConfidenceCalibration calibration;
 };
 
 // The localizer's logic, free of DDS: door sightings and the odometer in, a pose estimate
@@ -110,8 +115,10 @@ class Localizer {
   void StartTracking(double odometer_in);
   void ResetRecovery();
   bool TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges);
-  // The tracked pose as the estimate: LOCALIZED with `confidence`.
-  void PublishTracked(double confidence, const std::string& message);
+  // The tracked pose as the estimate: LOCALIZED with the filter's `posterior` (calibrated
+  // as the confidence).
+  void PublishTracked(double posterior, const std::string& message);
+  double Confidence(double posterior) const;
   // Whether the tracker has the robot in the edge the filter's place puts it in.
   bool TrackerAtFilterPlace(const recovery::PoseBelief& b) const;
   // Whether a place of the filter is the tracked pose slipped by a few edges.
@@ -129,6 +136,7 @@ class Localizer {
   std::unique_ptr<recovery::BayesLocalizer> bayes_;
   EdgeAssembler assembler_;
   PoseEstimate estimate_;
+  double posterior_ = 0.0;  // the best place's raw posterior behind estimate_.confidence
   PoseTracker tracker_;
   std::uint64_t restarts_ = 0;
   std::uint64_t losses_ = 0;

@@ -35,12 +35,19 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.view.max_recess_in = c.Get<double>("max_recess_in", 0.0, 600.0, "in");
   s.view.door_view_margin_in = c.Get<double>("door_view_margin_in", 0.0, 60.0, "in");
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
-  s.bayes_threshold = c.Get<double>("bayes_threshold", 0.5, 0.999999);
+  s.calibration.slope = c.Get<double>("confidence_calibration_slope", 0.05, 20.0);
+  s.calibration.offset = c.Get<double>("confidence_calibration_offset", -20.0, 20.0);
+  s.localized_confidence = c.Get<double>("localized_confidence", 0.5, 0.999999);
+  s.bayes_threshold = s.calibration.PosteriorFor(s.localized_confidence);
+  if (s.bayes_threshold > 0.999999) {
+    c.Fail("localized_confidence", "needs a posterior of " + std::to_string(s.bayes_threshold) +
+                                       " under this calibration: more than the filter's 0.999999");
+  }
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);
   s.bayes_confirm_edges = c.Get<int>("bayes_confirm_edges", 0, 20);
   s.bayes_keep_threshold = c.Get<double>("bayes_keep_threshold", 0.0, 0.999999);
   if (s.bayes_keep_threshold > s.bayes_threshold) {
-    c.Fail("bayes_keep_threshold", "must not be above bayes_threshold (" +
+    c.Fail("bayes_keep_threshold", "must not be above the posterior localized_confidence needs (" +
                                        std::to_string(s.bayes_threshold) + ")");
   }
   s.bayes_lost_threshold = c.Get<double>("bayes_lost_threshold", 0.0, 0.999999);
@@ -66,6 +73,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;
     config.bayes.settings.kidnap_per_edge = settings.bayes_kidnap_per_edge;
     config.keep_threshold = settings.bayes_keep_threshold;
+    config.calibration = settings.calibration;
     config.lost_threshold = settings.bayes_lost_threshold;
     config.bayes.settings.max_step_in = settings.view.max_step_in;
   }

@@ -18,7 +18,12 @@ struct LocalizerSettings {
   std::string error_model_file;  // resolved against the settings file
   std::string study_file;
   double publish_rate_hz = 2.0;
-  // The posterior the Bayes matcher needs to declare a pose (replaces the study's).
+  // The Bayes filter's posterior as the published confidence, and the calibrated confidence
+  // a pose needs to be declared LOCALIZED (1 - it: the stated risk that it is wrong).
+  ConfidenceCalibration calibration;
+  double localized_confidence = 0.995;
+  // The posterior the Bayes matcher needs to declare a pose (replaces the study's): the one
+  // whose calibrated confidence is localized_confidence.
   double bayes_threshold = 0.995;
   // The probability that a sensed edge is one the error model cannot explain (replaces the
   // study's).

@@ -1,0 +1,92 @@
+#include "localizer/confidence_calibration.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/config_paths.h"
+#include "common/input_error.h"
+#include "localizer/localizer_config.h"
+
+namespace stickrep::localizer {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(ConfidenceCalibrationTest, IdentityLeavesThePosteriorAsItIs) {
+  const ConfidenceCalibration identity;
+  for (double p : {0.0, 0.2, 0.5, 0.995, 1.0}) {
+    EXPECT_DOUBLE_EQ(identity.Calibrated(p), p);
+    EXPECT_DOUBLE_EQ(identity.PosteriorFor(p), p);
+  }
+}
+
+// The fit of docs/whereami.md over 1000 runs: the bins' mean posteriors and what the fit
+// gives there (the measured shares right were 0.9946 and 0.9774).
+TEST(ConfidenceCalibrationTest, AnOverConfidentPosteriorIsPulledDown) {
+  const ConfidenceCalibration c{0.765, -0.984};
+  EXPECT_NEAR(c.Calibrated(0.9998), 0.9961, 5e-4);
+  EXPECT_NEAR(c.Calibrated(0.9972), 0.9710, 5e-4);
+  EXPECT_LT(c.Calibrated(0.5), 0.5);
+  // Monotonic, and never outside [0, 1] at the filter's floor and ceiling.
+  double last = 0.0;
+  for (double p = 0.0; p <= 1.0; p += 0.01) {
+    const double q = c.Calibrated(p);
+    EXPECT_GE(q, last);
+    EXPECT_GE(q, 0.0);
+    EXPECT_LE(q, 1.0);
+    last = q;
+  }
+}
+
+TEST(ConfidenceCalibrationTest, PosteriorForInvertsTheCalibration) {
+  const ConfidenceCalibration c{0.765, -0.984};
+  for (double q : {0.05, 0.5, 0.9, 0.99, 0.995, 0.999}) {
+    EXPECT_NEAR(c.Calibrated(c.PosteriorFor(q)), q, 1e-12);
+  }
+  // 99.5 % right needs a posterior of 0.99973 (docs/whereami.md).
+  EXPECT_NEAR(c.PosteriorFor(0.995), 0.99973, 1e-5);
+}
+
+std::string Shipped() { return ReadYamlText(DefaultConfigDir() + "/localizer.yaml"); }
+
+LocalizerSettings Load(const std::string& text) {
+  return LoadLocalizerSettings(StrictYaml::LoadString(text, "localizer.yaml").Child("localizer"));
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(ConfidenceCalibrationTest, TheShippedThresholdIsACalibratedConfidence) {
+  const LocalizerSettings s = Load(Shipped());
+  EXPECT_GT(s.calibration.slope, 0.0);
+  // The filter's own threshold is the posterior whose calibrated confidence is the one
+  // declared: never below it for an over-confident filter.
+  EXPECT_NEAR(s.calibration.Calibrated(s.bayes_threshold), s.localized_confidence, 1e-9);
+  EXPECT_GE(s.bayes_threshold, s.localized_confidence);
+}
+
+TEST(ConfidenceCalibrationTest, AConfidenceTheFilterCannotReachIsRefusedWithItsKey) {
+  const std::string text = Replace(Shipped(), "localized_confidence: 0.955",
+                                   "localized_confidence: 0.99999");
+  try {
+    Load(text);
+    FAIL() << "accepted a confidence that needs a posterior over 0.999999";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
+    EXPECT_THAT(e.what(), HasSubstr("localized_confidence"));
+  }
+}
+
+TEST(ConfidenceCalibrationTest, ASlopeOfZeroIsRefused) {
+  EXPECT_THROW(Load(Replace(Shipped(), "confidence_calibration_slope: 0.765",
+                            "confidence_calibration_slope: 0")),
+               InputError);
+}
+
+}  // namespace
+}  // namespace stickrep::localizer
