@@ -75,12 +75,24 @@ std::vector<std::string> SplitServerList(const std::string& text) {
 
 void WatchAuthentication(const Participant& participant, Executor& executor,
                          std::shared_ptr<spdlog::logger> log) {
-  auto logged = std::make_shared<size_t>(0);
+  struct Logged {
+    size_t refused = 0;
+    size_t authenticated = 0;
+  };
+  auto logged = std::make_shared<Logged>();
   executor.AddTimer(1.0, [&participant, log, logged] {
-    const auto refused = participant.discovery().Refused();
-    for (; *logged < refused.size(); ++*logged) {
+    const DiscoveryListener& d = participant.discovery();
+    const auto refused = d.Refused();
+    for (; logged->refused < refused.size(); ++logged->refused) {
       log->warn("DDS Security: participant {} failed authentication: ignored",
-                refused[*logged]);
+                refused[logged->refused]);
+    }
+    const auto authenticated = d.AuthenticatedPrefixes();
+    for (; logged->authenticated < authenticated.size(); ++logged->authenticated) {
+      const std::string& prefix = authenticated[logged->authenticated];
+      const std::string name = d.NameOf(prefix);
+      log->info("DDS Security: participant {} ({}) authenticated", prefix,
+                name.empty() ? "name not yet discovered" : name);
     }
   });
 }

@@ -98,14 +98,26 @@ void DiscoveryListener::on_participant_discovery(
 void DiscoveryListener::onParticipantAuthentication(
     dds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) {
   using Info = eprosima::fastrtps::rtps::ParticipantAuthenticationInfo;
+  std::ostringstream prefix;
+  prefix << info.guid.guidPrefix;
   std::lock_guard<std::mutex> lock(mutex_);
   if (info.status == Info::AUTHORIZED_PARTICIPANT) {
     authenticated_++;
+    authenticated_prefixes_.push_back(prefix.str());
   } else {
-    std::ostringstream prefix;
-    prefix << info.guid.guidPrefix;
     refused_.push_back(prefix.str());
   }
+}
+
+std::vector<std::string> DiscoveryListener::AuthenticatedPrefixes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return authenticated_prefixes_;
+}
+
+std::string DiscoveryListener::NameOf(const std::string& prefix) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = participants_.find(prefix);
+  return it == participants_.end() ? "" : it->second;
 }
 
 int DiscoveryListener::Authenticated() const {

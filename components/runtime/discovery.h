@@ -57,6 +57,10 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
       eprosima::fastdds::dds::DomainParticipant*,
       eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override;
   int Authenticated() const;
+  // The GUID prefixes of the participants authenticated so far, in order.
+  std::vector<std::string> AuthenticatedPrefixes() const;
+  // A participant's name from its GUID prefix ("" if not discovered).
+  std::string NameOf(const std::string& prefix) const;
   std::vector<std::string> Refused() const;
   std::vector<DiscoveredEndpoint> Endpoints() const;
   // Names of the remote participants alive now.
@@ -71,6 +75,7 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
   std::map<std::string, std::string> participants_;  // GUID prefix -> name
   std::vector<std::string> servers_;
   int authenticated_ = 0;
+  std::vector<std::string> authenticated_prefixes_;
   std::vector<std::string> refused_;
 };
 

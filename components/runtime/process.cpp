@@ -145,8 +145,8 @@ int RunProcess(int argc, char** argv, const std::string& name, const NodeFactory
               options.config_file);
     WatchDiscoveryServers(*participant, executor, log);
     if (!options.deployment.security_dir.empty()) {
-      log->info("secured: identity '{}' of {}", participant->security_identity(),
-                options.deployment.security_dir);
+      log->info("secured: identity '{}' of {} (participant stickrep-{})",
+                participant->security_identity(), options.deployment.security_dir, name);
       WatchAuthentication(*participant, executor, log);
     }
 
