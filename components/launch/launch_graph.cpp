@@ -64,6 +64,11 @@ LaunchGraph LaunchGraph::Load(const StrictYaml& root) {
   if (g.start_spacing_s < 0.0 || g.start_spacing_s > 10.0) {
     l.Fail("start_spacing_s", "must be within [0, 10] s");
   }
+  g.handshake_timeout_s = l.GetOr<double>("handshake_timeout_s", g.handshake_timeout_s);
+  if (g.handshake_timeout_s != 0.0 &&
+      (g.handshake_timeout_s < 5.0 || g.handshake_timeout_s > 600.0)) {
+    l.Fail("handshake_timeout_s", "must be 0 (never) or within [5, 600] s");
+  }
   if (l.Has("restart")) g.restart = LoadRestartPolicy(l, "restart", g.restart);
   if (l.Has("parameters")) {
     const StrictYaml params = l.Child("parameters");

@@ -50,6 +50,10 @@ struct LaunchGraph {
                                   // fails and is not restarted (empty: never)
   double max_duration_s = 0.0;    // and in any case after this long (0: no limit)
   double start_spacing_s = 0.0;   // pause between starting processes
+  // Secured runs: two processes that have not authenticated each other this long after both
+  // started are taken for a stuck DDS Security handshake, and the later one is restarted
+  // (HandshakeWatch). 0: never.
+  double handshake_timeout_s = 20.0;
   RestartPolicy restart;          // every process's, unless it names its own
 
   // Throws InputError naming file, line and key.

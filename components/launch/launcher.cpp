@@ -1,6 +1,7 @@
 #include "launch/launcher.h"
 
 #include "launch/child_process.h"
+#include "launch/handshake_watch.h"
 
 #include <poll.h>
 #include <signal.h>
@@ -38,6 +39,10 @@ std::string FindExecutable(const std::string& exe, const std::string& bin_dir) {
 
 using SteadyClock = std::chrono::steady_clock;
 
+// Restarts per pair of processes for a stuck DDS Security handshake: a pair still stuck after
+// these is left as it is (its processes' logs show which participants they authenticated).
+constexpr int kMaxHandshakeHeals = 3;
+
 double SecondsBetween(SteadyClock::time_point a, SteadyClock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
@@ -52,11 +57,22 @@ struct Child {
   bool down = false;                      // ended, and no restart is due
   std::optional<SteadyClock::time_point> restart_at;
   int in_a_row = 0;                       // restarts since it last stayed up backoff_max_s
+  bool healing = false;                   // stopped by the launcher to be started again
 };
 
-void Forward(Child& c, std::ostream& out, size_t width, bool flush_partial) {
+// What the run watches across rounds: the clock it started on and, when secured, the
+// processes' DDS Security handshakes.
+struct Watch {
+  SteadyClock::time_point started = SteadyClock::now();
+  std::optional<HandshakeWatch> handshakes;
+  double Now() const { return SecondsBetween(started, SteadyClock::now()); }
+};
+
+void Forward(Child& c, std::ostream& out, size_t width, bool flush_partial,
+             Watch* watch = nullptr) {
   for (const std::string& line : c.process->ReadLines(flush_partial)) {
     fmt::print(out, "{:<{}} | {}\n", c.result.name, width, line);
+    if (watch != nullptr && watch->handshakes) watch->handshakes->Line(c.result.name, line);
     const auto pos = line.find("stopped: ");
     if (pos != std::string::npos) c.result.last_summary = line.substr(pos + 9);
   }
@@ -97,7 +113,8 @@ std::vector<std::string> CommandLine(const LaunchGraph& graph, const ProcessSpec
 }
 
 // Starts every process of the graph.
-std::vector<Child> StartChildren(const LaunchGraph& graph, const LaunchOptions& options) {
+std::vector<Child> StartChildren(const LaunchGraph& graph, const LaunchOptions& options,
+                                 Watch& watch) {
   const auto values =
       PlaceholderValues(graph, options.config_dir, options.overrides, options.security_dir);
   std::vector<Child> children;
@@ -108,6 +125,7 @@ std::vector<Child> StartChildren(const LaunchGraph& graph, const LaunchOptions& 
     c.result.name = p.name;
     c.process = std::make_unique<ChildProcess>(p.name, c.argv);
     c.started = SteadyClock::now();
+    if (watch.handshakes) watch.handshakes->Started(p.name, watch.Now());
     children.push_back(std::move(c));
     if (graph.start_spacing_s > 0.0) {
       std::this_thread::sleep_for(std::chrono::duration<double>(graph.start_spacing_s));
@@ -144,29 +162,53 @@ void DecideRestart(Child& c, std::ostream& out) {
              policy.max_restarts > 0 ? fmt::format(" of {}", policy.max_restarts) : "");
 }
 
-void Restart(Child& c, std::ostream& out) {
+void Restart(Child& c, std::ostream& out, Watch& watch) {
   c.restart_at.reset();
   c.process = std::make_unique<ChildProcess>(c.result.name, c.argv);
   c.started = SteadyClock::now();
   c.result.restarts++;
   c.result.exit_code = -1;
   c.result.signal = 0;
+  if (watch.handshakes) watch.handshakes->Started(c.result.name, watch.Now());
   fmt::print(out, "launch: {} restarted (restart {})\n", c.result.name, c.result.restarts);
 }
 
 bool Running(const Child& c) { return !c.down && !c.restart_at; }
 
+// Secured runs: a pair of processes stuck in their DDS Security handshake gets its later
+// process stopped (SIGTERM) and started again as soon as it has ended, whatever its policy.
+void HealHandshakes(std::vector<Child>& children, std::ostream& out, Watch& watch) {
+  if (!watch.handshakes) return;
+  for (const HandshakeWatch::Stuck& s : watch.handshakes->Check(watch.Now())) {
+    for (Child& c : children) {
+      if (c.result.name != s.restart || !Running(c) || c.healing) continue;
+      fmt::print(out,
+                 "launch: {} and {} have not authenticated each other {:.0f} s after both "
+                 "started (a DDS Security handshake that never completed): restarting {}\n",
+                 s.restart, s.other, s.together_s, s.restart);
+      c.healing = true;
+      c.process->Signal(SIGTERM);
+    }
+  }
+}
+
 // One round of the run: forwards output, reaps what ended, restarts what is due. Returns why
 // the run must end, or "".
 std::string Step(const LaunchGraph& graph, std::vector<Child>& children, std::ostream& out,
-                 size_t width) {
+                 size_t width, Watch& watch) {
   std::string ended_by;
   for (Child& c : children) {
-    if (c.restart_at && SteadyClock::now() >= *c.restart_at) Restart(c, out);
+    if (c.restart_at && SteadyClock::now() >= *c.restart_at) Restart(c, out, watch);
     if (!Running(c)) continue;
-    Forward(c, out, width, false);
+    Forward(c, out, width, false, &watch);
     if (!Reap(c)) continue;
-    Forward(c, out, width, true);
+    Forward(c, out, width, true, &watch);
+    if (watch.handshakes) watch.handshakes->Stopped(c.result.name);
+    if (c.healing) {
+      c.healing = false;
+      c.restart_at = SteadyClock::now();
+      continue;
+    }
     const bool failed = c.result.signal != 0 || c.result.exit_code != 0;
     if (failed) c.result.failures++;
     const bool ends_the_run = c.result.name == graph.until_exit_of;
@@ -185,6 +227,7 @@ std::string Step(const LaunchGraph& graph, std::vector<Child>& children, std::os
     // Keeps the reason a process gave, when it gave one in the same round.
     ended_by = ended_by.empty() ? "every process exited" : "every process exited; " + ended_by;
   }
+  HealHandshakes(children, out, watch);
   return ended_by;
 }
 
@@ -234,7 +277,11 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
 
   size_t width = 0;
   for (const ProcessSpec& p : graph.processes) width = std::max(width, p.name.size());
-  std::vector<Child> children = StartChildren(graph, options);
+  Watch watch;
+  if (!options.security_dir.empty() && graph.handshake_timeout_s > 0.0) {
+    watch.handshakes.emplace(graph.handshake_timeout_s, kMaxHandshakeHeals);
+  }
+  std::vector<Child> children = StartChildren(graph, options, watch);
   const auto started = SteadyClock::now();
   fmt::print(out, "started {} processes of '{}'{}\n", children.size(), graph.name,
              options.security_dir.empty() ? "" : " (secured: " + options.security_dir + ")");
@@ -246,7 +293,7 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
       if (Running(c)) fds.push_back({c.process->output_fd(), POLLIN, 0});
     }
     poll(fds.data(), fds.size(), 100);
-    ended_by = Step(graph, children, out, width);
+    ended_by = Step(graph, children, out, width, watch);
     const double elapsed = SecondsBetween(started, SteadyClock::now());
     if (ended_by.empty() && graph.max_duration_s > 0.0 && elapsed > graph.max_duration_s) {
       ended_by = fmt::format("the {:g} s limit passed", graph.max_duration_s);

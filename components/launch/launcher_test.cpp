@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <csignal>
 #include <fstream>
 #include <sstream>
@@ -169,6 +170,50 @@ TEST(LauncherTest, ASecuredRunPassesTheDirectoryToEveryProcess) {
   RunGraph(Graph({Proc("stickrep", "echo", {"args:"}), server}, ""), options, out);
   EXPECT_THAT(out.str(), HasSubstr("stickrep | args: --security-dir /keys"));
   EXPECT_THAT(out.str(), HasSubstr("server   | server /keys/server.xml"));
+}
+
+
+// Two secured processes that never authenticate each other: after the handshake timeout the
+// later-started one is stopped and started again, whatever its restart policy; started again,
+// it authenticates the other and the run ends.
+TEST(LauncherTest, ASecuredPairThatNeverAuthenticatesHasItsLaterProcessRestarted) {
+  std::ostringstream out;
+  const std::string marker =
+      ::testing::TempDir() + "/stickrep_heal_" + std::to_string(getpid());
+  std::remove(marker.c_str());
+  ProcessSpec early = Proc("early", "sh", {"-c",
+      "echo \"secured: identity 'e' of /keys (participant stickrep-early)\"; exec sleep 20"});
+  ProcessSpec late = Proc("late", "sh", {"-c",
+      "echo \"secured: identity 'l' of /keys (participant stickrep-late)\"; "
+      "if [ -e " + marker + " ]; then "
+      "echo 'DDS Security: participant 01.0f (stickrep-early) authenticated'; exit 0; fi; "
+      "touch " + marker + "; exec sleep 20"});
+  early.use_common_args = late.use_common_args = false;
+  LaunchGraph graph = Graph({early, late}, "late");
+  graph.start_spacing_s = 0.1;
+  graph.handshake_timeout_s = 1.0;
+  LaunchOptions options = Options();
+  options.security_dir = "/keys";
+  const auto results = RunGraph(graph, options, out);
+  std::remove(marker.c_str());
+  EXPECT_THAT(out.str(), HasSubstr("launch: late and early have not authenticated each other"));
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_EQ(results[1].restarts, 1);
+  EXPECT_EQ(results[1].exit_code, 0);
+  EXPECT_THAT(out.str(), HasSubstr("ending the run: late exited"));
+}
+
+// Unsecured, nothing is watched.
+TEST(LauncherTest, APlainRunIsNotWatchedForHandshakes) {
+  std::ostringstream out;
+  LaunchGraph graph = Graph({Proc("a", "sh", {"-c", "echo \"secured: identity 'a' of /k "
+                                                     "(participant stickrep-a)\"; sleep 2"}),
+                             Proc("b", "sh", {"-c", "echo \"secured: identity 'b' of /k "
+                                                     "(participant stickrep-b)\"; sleep 2"})},
+                            "b");
+  graph.handshake_timeout_s = 0.5;
+  RunGraph(graph, Options(), out);
+  EXPECT_THAT(out.str(), ::testing::Not(HasSubstr("have not authenticated")));
 }
 
 }  // namespace
