@@ -22,6 +22,7 @@
 #include <optional>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -45,6 +46,10 @@ constexpr int kControlDomain = 61;   // the Cyclone peer beside a plain reader, 
 // dozens of goals and commands at 10 Hz.
 constexpr double kAttackWindowS = 8.0;
 constexpr const char* kGoalTarget = "wing1_corridor/60";
+constexpr int kProcesses = 7;  // the all-in-one graph's
+// As the launcher's handshake watch (launch::HandshakeWatch): a handshake not done this long
+// after both participants started has stuck.
+constexpr double kHandshakeTimeoutS = 20.0;
 
 runtime::QosCatalog Catalog() { return runtime::QosCatalog::LoadFile(ConfigPath("qos.yaml")); }
 
@@ -96,6 +101,31 @@ struct Stack {
 
 Stack* g_stack = nullptr;
 
+// The observer with the console's identity, and its readers: made again when its handshake
+// with a process of the stack has stuck (SecuredStackTest::AuthenticateObserver).
+void JoinObserver() {
+  Stack& s = *g_stack;
+  s.status.reset();
+  s.results.reset();
+  s.truth.reset();
+  s.observer.reset();
+  s.observer = std::make_unique<runtime::Participant>(
+      Config(kDomain, "stickrep-console", s.keys, "console"), Catalog());
+  s.status = std::make_unique<runtime::Reader<msgs::MissionStatusPubSubType>>(
+      *s.observer, s.executor, "mission/status", [](const msgs::MissionStatus& m) {
+        static const char* kNames[] = {"WAITING_FOR_COMPONENTS", "ALIGNING", "RECOVERING_POSE",
+                                       "LOCALIZED", "EXECUTING_GOAL", "GOAL_REACHED",
+                                       "STOPPED_FAULT", "LINK_LOST"};
+        g_stack->mission_state = kNames[static_cast<int>(m.state())];
+      });
+  s.results = std::make_unique<runtime::Reader<msgs::MissionGoalResultPubSubType>>(
+      *s.observer, s.executor, "mission/goal_result",
+      [](const msgs::MissionGoalResult& r) { g_stack->goal_results.push_back(r); });
+  s.truth = std::make_unique<runtime::Reader<msgs::GroundTruthPubSubType>>(
+      *s.observer, s.executor, "sim/ground_truth",
+      [](const msgs::GroundTruth& g) { g_stack->collisions = g.collisions(); });
+}
+
 class SecuredStackTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite();
@@ -126,13 +156,41 @@ class SecuredStackTest : public ::testing::Test {
     return true;
   }
 
+  // How many of the stack's processes (by participant name) the observer has authenticated
+  // and still discovers.
+  static size_t ObserverKnows() {
+    const auto& d = g_stack->observer->discovery();
+    std::set<std::string> names;
+    for (const std::string& prefix : d.AuthenticatedPrefixes()) {
+      const std::string name = d.NameOf(prefix);
+      if (!name.empty()) names.insert(name);
+    }
+    return names.size();
+  }
+
   static bool StackSaid(const std::string& text) {
     return g_stack->launch->output().find(text) != std::string::npos;
   }
 
   static std::string Output() {
     Pump();
-    return g_stack->launch->output();
+    return g_stack->launch->output() + ObserverState();
+  }
+
+  // What the console-identity observer knows: which participants it discovered and
+  // authenticated, which topics, and whether its readers matched a writer.
+  static std::string ObserverState() {
+    const auto& d = g_stack->observer->discovery();
+    std::string participants;
+    for (const auto& p : d.Participants()) participants += (participants.empty() ? "" : ", ") + p;
+    return "\n[observer] participants: " + (participants.empty() ? "none" : participants) +
+           "; authenticated: " + std::to_string(d.Authenticated()) +
+           "; refused: " + std::to_string(d.Refused().size()) +
+           "; topics: " + Join(StackTopics(*g_stack->observer)) +
+           "; matched writers: status " + std::to_string(g_stack->status->counters().matched) +
+           ", goal_result " + std::to_string(g_stack->results->counters().matched) +
+           ", ground_truth " + std::to_string(g_stack->truth->counters().matched) +
+           "; samples: status " + std::to_string(g_stack->status->counters().samples) + "\n";
   }
 
   // Runs `attack` every 0.1 s for the attack window; then the base must not have moved
@@ -193,21 +251,7 @@ void SecuredStackTest::SetUpTestSuite() {
   const auto [rogue_rc, rogue_out] = Shell(script + s.rogue_keys);
   ASSERT_EQ(rogue_rc, 0) << rogue_out;
 
-  s.observer = std::make_unique<runtime::Participant>(
-      Config(kDomain, "stickrep-console", s.keys, "console"), Catalog());
-  s.status = std::make_unique<runtime::Reader<msgs::MissionStatusPubSubType>>(
-      *s.observer, s.executor, "mission/status", [](const msgs::MissionStatus& m) {
-        static const char* kNames[] = {"WAITING_FOR_COMPONENTS", "ALIGNING", "RECOVERING_POSE",
-                                       "LOCALIZED", "EXECUTING_GOAL", "GOAL_REACHED",
-                                       "STOPPED_FAULT", "LINK_LOST"};
-        g_stack->mission_state = kNames[static_cast<int>(m.state())];
-      });
-  s.results = std::make_unique<runtime::Reader<msgs::MissionGoalResultPubSubType>>(
-      *s.observer, s.executor, "mission/goal_result",
-      [](const msgs::MissionGoalResult& r) { g_stack->goal_results.push_back(r); });
-  s.truth = std::make_unique<runtime::Reader<msgs::GroundTruthPubSubType>>(
-      *s.observer, s.executor, "sim/ground_truth",
-      [](const msgs::GroundTruth& g) { g_stack->collisions = g.collisions(); });
+  JoinObserver();
 
   // The all-in-one graph on the small map, the mission holding at the recovered pose. At
   // real time: at twice real time, with the realistic camera frames, on a loaded 2-core
@@ -240,6 +284,11 @@ void SecuredStackTest::TearDownTestSuite() {
     g_stack->launch->WaitExit(5.0);
     g_stack->launch->ReadLines(true);
     const std::string& out = g_stack->launch->output();
+    // The launcher's own lines: a process restarted for a stuck handshake says so.
+    std::istringstream lines(out);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("launch: ", 0) == 0) std::printf("[security] %s\n", line.c_str());
+    }
     const auto table = out.find("\nPROCESS ");
     if (table != std::string::npos) std::printf("[security] %s\n", out.substr(table + 1).c_str());
   }
@@ -254,6 +303,20 @@ void SecuredStackTest::TearDownTestSuite() {
 // First: the secured stack recovers the pose and the virtual robot judges it correct.
 TEST_F(SecuredStackTest, SecuredStackRecoversACorrectPose) {
   const double t0 = WallNowS();
+  // Every process authenticates every other (the launcher restarts one of a pair whose
+  // handshake stuck) and the observer (the console's identity) every process: when its own
+  // handshake with one has stuck, it joins again, as an operator would restart a console.
+  int rejoins = 0;
+  while (!WaitFor([] { return ObserverKnows() >= kProcesses; }, kHandshakeTimeoutS)) {
+    ASSERT_LT(rejoins, 3) << "the observer authenticated " << ObserverKnows() << " of "
+                          << kProcesses << " processes after joining 3 times" << Output();
+    std::printf("[security] the observer authenticated %zu of %d processes in %.0f s: "
+                "joining again\n", ObserverKnows(), kProcesses, kHandshakeTimeoutS);
+    rejoins++;
+    JoinObserver();
+  }
+  std::printf("[security] observer authenticated every process after %.1f s (%d rejoins)\n",
+              WallNowS() - t0, rejoins);
   ASSERT_TRUE(WaitFor([] { return StackSaid("CORRECT") && g_stack->mission_state == "LOCALIZED"; },
                       300.0))
       << Output();
