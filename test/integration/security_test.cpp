@@ -102,7 +102,7 @@ struct Stack {
 Stack* g_stack = nullptr;
 
 // The observer with the console's identity, and its readers: made again when its handshake
-// with a process of the stack has stuck (SecuredStackTest::AuthenticateObserver).
+// with a process of the stack has stuck (SecuredStackRecoversACorrectPose joins it again).
 void JoinObserver() {
   Stack& s = *g_stack;
   s.status.reset();
