@@ -80,7 +80,9 @@ TEST(RealismTest, BaseboardsAreDrawnWhenOnAndAbsentWhenOff) {
   EXPECT_GT(CountKind(with, PanelKind::kBaseboard), 0);
   EXPECT_EQ(CountKind(without, PanelKind::kBaseboard), 0);
   for (const Panel& p : with.panels()) {
-    if (p.kind == PanelKind::kBaseboard) EXPECT_DOUBLE_EQ(p.top_in, 6.0);
+    if (p.kind == PanelKind::kBaseboard) {
+      EXPECT_DOUBLE_EQ(p.top_in, 6.0);
+    }
   }
 }
 
