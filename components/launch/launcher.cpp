@@ -60,8 +60,8 @@ struct Child {
   bool healing = false;                   // stopped by the launcher to be started again
 };
 
-// What the run watches across rounds: the clock it started on and, when secured, the
-// processes' DDS Security handshakes.
+// What the run watches across rounds: the clock it started on (its time limit counts from
+// there) and, when secured, the processes' DDS Security handshakes.
 struct Watch {
   SteadyClock::time_point started = SteadyClock::now();
   std::optional<HandshakeWatch> handshakes;
@@ -282,7 +282,6 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
     watch.handshakes.emplace(graph.handshake_timeout_s, kMaxHandshakeHeals);
   }
   std::vector<Child> children = StartChildren(graph, options, watch);
-  const auto started = SteadyClock::now();
   fmt::print(out, "started {} processes of '{}'{}\n", children.size(), graph.name,
              options.security_dir.empty() ? "" : " (secured: " + options.security_dir + ")");
 
@@ -294,7 +293,7 @@ std::vector<ProcessResult> RunGraph(const LaunchGraph& graph, const LaunchOption
     }
     poll(fds.data(), fds.size(), 100);
     ended_by = Step(graph, children, out, width, watch);
-    const double elapsed = SecondsBetween(started, SteadyClock::now());
+    const double elapsed = watch.Now();
     if (ended_by.empty() && graph.max_duration_s > 0.0 && elapsed > graph.max_duration_s) {
       ended_by = fmt::format("the {:g} s limit passed", graph.max_duration_s);
     }

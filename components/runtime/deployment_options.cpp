@@ -73,11 +73,16 @@ std::vector<std::string> SplitServerList(const std::string& text) {
   return out;
 }
 
+namespace {
+constexpr int kTicksToWaitForAName = 5;
+}  // namespace
+
 void WatchAuthentication(const Participant& participant, Executor& executor,
                          std::shared_ptr<spdlog::logger> log) {
   struct Logged {
     size_t refused = 0;
     size_t authenticated = 0;
+    int waited_for_name = 0;  // timer ticks the next authenticated participant had no name
   };
   auto logged = std::make_shared<Logged>();
   executor.AddTimer(1.0, [&participant, log, logged] {
@@ -91,6 +96,10 @@ void WatchAuthentication(const Participant& participant, Executor& executor,
     for (; logged->authenticated < authenticated.size(); ++logged->authenticated) {
       const std::string& prefix = authenticated[logged->authenticated];
       const std::string name = d.NameOf(prefix);
+      // The name comes with the participant's discovery, just after its authentication: wait
+      // a few ticks for it (the launcher's handshake watch reads the names from these lines).
+      if (name.empty() && ++logged->waited_for_name < kTicksToWaitForAName) break;
+      logged->waited_for_name = 0;
       log->info("DDS Security: participant {} ({}) authenticated", prefix,
                 name.empty() ? "name not yet discovered" : name);
     }

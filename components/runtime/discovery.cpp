@@ -102,7 +102,6 @@ void DiscoveryListener::onParticipantAuthentication(
   prefix << info.guid.guidPrefix;
   std::lock_guard<std::mutex> lock(mutex_);
   if (info.status == Info::AUTHORIZED_PARTICIPANT) {
-    authenticated_++;
     authenticated_prefixes_.push_back(prefix.str());
   } else {
     refused_.push_back(prefix.str());
@@ -122,7 +121,7 @@ std::string DiscoveryListener::NameOf(const std::string& prefix) const {
 
 int DiscoveryListener::Authenticated() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return authenticated_;
+  return static_cast<int>(authenticated_prefixes_.size());
 }
 
 std::vector<std::string> DiscoveryListener::Refused() const {

@@ -74,7 +74,6 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
   std::map<std::string, DiscoveredEndpoint> by_guid_;
   std::map<std::string, std::string> participants_;  // GUID prefix -> name
   std::vector<std::string> servers_;
-  int authenticated_ = 0;
   std::vector<std::string> authenticated_prefixes_;
   std::vector<std::string> refused_;
 };
