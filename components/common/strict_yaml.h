@@ -22,6 +22,11 @@ inline constexpr std::uintmax_t kMaxYamlFileBytes = 16u * 1024u * 1024u;
 // over kMaxYamlFileBytes (a huge file of garbage is never loaded). Throws InputError.
 std::string ReadYamlText(const std::string& path);
 
+// `text` as a double-quoted YAML scalar that reads back as exactly `text`: quote and
+// backslash escaped, every control byte written as \xNN, other bytes as they are. For
+// writers that put free text (a source, a description) into a YAML file they will load.
+std::string YamlQuoted(const std::string& text);
+
 // A view of one YAML node that knows its file and its key path, reads values strictly and
 // reports every problem as an InputError naming file, line and key. A mapping remembers
 // which keys were read so that Finish() can reject the unknown ones ("every key used

@@ -5,6 +5,8 @@
 
 #include <cstdio>
 #include <fstream>
+#include <string>
+#include <vector>
 
 namespace stickrep {
 namespace {
@@ -32,6 +34,18 @@ TEST(StrictYamlTest, ReadsTypedValuesAndAcceptsWhenEveryKeyIsUsed) {
   EXPECT_TRUE(sonar.Get<bool>("on"));
   EXPECT_NO_THROW(sonar.Finish());
   EXPECT_NO_THROW(root.Finish());
+}
+
+TEST(StrictYamlTest, QuotedTextReadsBackAsTheSameBytes) {
+  const std::vector<std::string> texts = {
+      "", "plain", "say \"hi\"", "back\\slash", "\\\xe9 after a backslash", "tab\there",
+      "line\nbreak\r", std::string("nul\0byte", 8), "\x01\x1f\x7f", "na\xc3\xafve",
+      "\\x41 is not an escape", "# not a comment", "key: value", "- item", "'single'"};
+  for (const std::string& text : texts) {
+    const std::string yaml = "text: " + YamlQuoted(text) + "\n";
+    StrictYaml root = StrictYaml::LoadString(yaml, "quoted.yaml");
+    EXPECT_EQ(root.Get<std::string>("text"), text) << yaml;
+  }
 }
 
 TEST(StrictYamlTest, UnknownKeyNamesFileLineAndKey) {

@@ -449,9 +449,7 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
     line.clear();
   }
   out += "error_model:\n";
-  std::string source;
-  for (char ch : m.source) source += ch == '"' ? '\'' : ch;
-  out += "  source: \"" + source + "\"\n";
+  out += "  source: " + YamlQuoted(m.source) + "\n";
   out += "  door_correct: " + number(m.door_correct) + "\n";
   out += "  door_missized: " + number(m.door_missized) + "\n";
   out += "  door_missed: " + number(m.door_missed) + "\n";

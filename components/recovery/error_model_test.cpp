@@ -43,7 +43,8 @@ TEST(ErrorModelFile, ReadsOptionalDistributions) {
 
 TEST(ErrorModelFile, WrittenModelReadsBackTheSame) {
   ErrorModel m;
-  m.source = "written \"here\"";
+  // Quotes, a backslash before a non-ASCII byte, a tab and a newline: free text survives.
+  m.source = "written \"here\" \\\xe9\t\\x41\n";
   m.door_correct = 0.9;
   m.door_missized = 0.07;
   m.door_missed = 0.03;
@@ -53,7 +54,7 @@ TEST(ErrorModelFile, WrittenModelReadsBackTheSame) {
   const std::string text = FormatErrorModelYaml(m, "first line\nsecond line");
   EXPECT_EQ(text.rfind("# first line\n# second line\nerror_model:\n", 0), 0u) << text;
   const ErrorModel back = ParseErrorModel(text, "written.yaml");
-  EXPECT_EQ(back.source, "written 'here'");
+  EXPECT_EQ(back.source, m.source);
   EXPECT_DOUBLE_EQ(back.door_correct, 0.9);
   EXPECT_DOUBLE_EQ(back.wall_false_door, 0.05);
   EXPECT_DOUBLE_EQ(back.missized_to.at(DoorClass::k36).at(DoorClass::k40), 0.75);

@@ -365,22 +365,6 @@ std::string FormatNumber(double value) {
   return s;
 }
 
-namespace {
-
-std::string Quote(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
-}  // namespace
 
 bool NeedsFormat2(const Map& map) {
   if (!map.obstacles().empty()) return true;
@@ -406,9 +390,9 @@ std::string WriteMapYaml(const Map& map) {
   }
   out << "stickrep_map: " << (NeedsFormat2(map) ? 2 : 1) << "\n";
   out << "name: " << info.name << "\n";
-  if (!info.description.empty()) out << "description: " << Quote(info.description) << "\n";
+  if (!info.description.empty()) out << "description: " << YamlQuoted(info.description) << "\n";
   if (!info.generator.empty()) {
-    out << "generator:\n  program: " << Quote(info.generator) << "\n";
+    out << "generator:\n  program: " << YamlQuoted(info.generator) << "\n";
     if (info.seed) out << "  seed: " << *info.seed << "\n";
   }
   out << "rings:\n";
@@ -433,7 +417,7 @@ std::string WriteMapYaml(const Map& map) {
       const Edge& e = ring.edges[i];
       out << "      - edge: {type: " << EdgeTypeName(e.type);
       if (e.IsDoor()) {
-        out << ", class: " << Quote(DoorClassName(*e.door_class));
+        out << ", class: " << YamlQuoted(DoorClassName(*e.door_class));
         if (std::abs(e.metric_in - DoorClassWidthIn(*e.door_class)) > 1e-9) {
           out << ", width_in: " << FormatNumber(e.metric_in);
         }
