@@ -152,6 +152,9 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
                                          tracker_.message());
   } else {
     const bool lost = tracked < config_.lost_threshold;
+    const TrackedPose p = tracker_.pose();
+    given_up_ = GivenUp{p.ring, p.edge, p.dir, tracked, lost,
+                        (given_up_ ? given_up_->serial : 0) + 1};
     LeaveLocalized(odometer_in, lost ? Status::kLost : Status::kRecovering,
                    fmt::format("the sensed edges {} the pose (belief {:.3f}): recovering from the "
                                "filter's belief",

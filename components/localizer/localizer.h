@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <memory>
+#include <optional>
 
 #include "localizer/confidence_calibration.h"
 #include "localizer/edge_assembler.h"
@@ -95,6 +96,17 @@ class Localizer {
   std::uint64_t restarts() const { return restarts_; }
   std::uint64_t losses() const { return losses_; }
   std::uint64_t edges_total() const { return edges_total_; }
+  // The last LOCALIZED pose given up: where, the filter's belief in it then, and whether it
+  // was declared LOST (belief under lost_threshold) rather than RECOVERING.
+  struct GivenUp {
+    int ring = 0;
+    int edge = 0;
+    int dir = +1;
+    double belief = 0.0;
+    bool lost = false;
+    std::uint64_t serial = 0;  // 1 for the first pose given up, and so on
+  };
+  const std::optional<GivenUp>& given_up() const { return given_up_; }
   // The edges sensed since the current recovery (or the last restart) began, in order.
   const std::vector<map::SensedEdge>& sensed_sequence() const { return assembler_.sequence(); }
   const std::vector<EdgeAssembler::Span>& sensed_spans() const { return assembler_.spans(); }
@@ -144,6 +156,7 @@ class Localizer {
   int recovery_edges_ = 0;  // edges weighed since the current recovery began
   double kidnap_per_edge_ = 0.0;  // the filter's kidnap share while a pose is held
   bool was_localized_ = false;
+  std::optional<GivenUp> given_up_;
 };
 
 }  // namespace stickrep::localizer

@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <tuple>
+#include <utility>
 
 namespace stickrep::localizer {
 namespace {
@@ -462,6 +464,83 @@ TEST(LocalizerTest, KidnappedWhileTravellingBackIsStillNoticed) {
   EXPECT_GE(loc.losses(), 1u);
   EXPECT_NE(std::find(after.begin(), after.end(), Status::kLost), after.end());
   EXPECT_EQ(after.back(), Status::kLocalized) << loc.estimate().message;
+}
+
+// The Bayes localizer as configs/localizer.yaml sets it up for a held pose: a kidnap share
+// per edge, the hold and LOST thresholds.
+LocalizerConfig HoldingBayesConfig(const map::Map& map, double lost_threshold) {
+  LocalizerConfig config;
+  config.method = MatchMethod::kBayes;
+  config.bayes.confusion = recovery::Resolve(
+      recovery::LoadErrorModel(std::string(STICKREP_SOURCE_DIR) + "/configs/error_model_paper.yaml"),
+      map::MatchIndex(map));
+  config.bayes.settings.kidnap_per_edge = 0.01;
+  config.keep_threshold = 0.9;
+  config.lost_threshold = lost_threshold;
+  return config;
+}
+
+// Kidnapped half a lap on the small hall: returns the localizer after the pose was given up
+// and found again at the new place, and every status it reported after the kidnap.
+std::pair<std::unique_ptr<Localizer>, std::vector<Status>> Kidnapped(const map::Map& map,
+                                                                     double lost_threshold) {
+  auto loc = std::make_unique<Localizer>(map, HoldingBayesConfig(map, lost_threshold));
+  DriveSegment(map, *loc, 10.0, 0.0, 1400.0);
+  EXPECT_EQ(loc->estimate().status, Status::kLocalized);
+  EXPECT_FALSE(loc->given_up().has_value());
+  auto after = DriveSegment(map, *loc, 10.0 + 1400.0 + 463.0, 1406.24, 6000.0);
+  return {std::move(loc), std::move(after)};
+}
+
+TEST(LocalizerTest, APoseGivenUpIsLostOnlyWhenTheFiltersBeliefInItIsUnderTheLostThreshold) {
+  const map::Map map = MakeMap(DistinctHall());
+  // The same kidnap, the same evidence: given up RECOVERING under a low LOST threshold...
+  const auto [recovering, after_low] = Kidnapped(map, 1e-3);
+  ASSERT_TRUE(recovering->given_up().has_value());
+  const Localizer::GivenUp g = *recovering->given_up();
+  EXPECT_EQ(g.serial, 1u);
+  EXPECT_EQ(g.dir, +1);
+  EXPECT_GE(g.belief, 1e-3);
+  EXPECT_FALSE(g.lost);
+  EXPECT_EQ(recovering->losses(), 0u);
+  EXPECT_EQ(std::find(after_low.begin(), after_low.end(), Status::kLost), after_low.end());
+  EXPECT_NE(std::find(after_low.begin(), after_low.end(), Status::kRecovering), after_low.end());
+  EXPECT_EQ(after_low.back(), Status::kLocalized) << recovering->estimate().message;
+  // ...and LOST under one above the belief it had then.
+  const auto [lost, after_high] = Kidnapped(map, std::min(0.999, g.belief + 0.01));
+  ASSERT_TRUE(lost->given_up().has_value());
+  EXPECT_DOUBLE_EQ(lost->given_up()->belief, g.belief);
+  EXPECT_TRUE(lost->given_up()->lost);
+  EXPECT_EQ(lost->losses(), 1u);
+  EXPECT_NE(std::find(after_high.begin(), after_high.end(), Status::kLost), after_high.end());
+  EXPECT_EQ(after_high.back(), Status::kLocalized) << lost->estimate().message;
+}
+
+TEST(LocalizerTest, ARightPoseGivenUpOnAFalseDoorIsFoundAgainWithoutALost) {
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map, HoldingBayesConfig(map, 1e-3));
+  DriveSegment(map, loc, 10.0, 0.0, 1400.0);
+  ASSERT_EQ(loc.estimate().status, Status::kLocalized);
+  // The middle of the 200 in wall (ring 272-472 in of the 926 in lap), one lap on, with a
+  // door sighted in it that is not there: a misread, not a kidnap.
+  std::vector<Status> all;
+  for (double odo = 1406.24; odo <= 4000.0; odo += 6.24) {
+    const double axis = 10.0 + odo;
+    const double from_false_door = std::remainder(axis - 372.0, 926.0);
+    if (axis < 2500.0 && std::abs(from_false_door) < 12.0) {
+      loc.AddSighting({map::DoorClass::k30, 30.0, 0.9, odo - from_false_door});
+    }
+    const auto s = DriveSegment(map, loc, axis, odo, odo);
+    all.insert(all.end(), s.begin(), s.end());
+  }
+  // The false door did make the filter unsure: the pose was given up, not LOST.
+  ASSERT_TRUE(loc.given_up().has_value());
+  EXPECT_GE(loc.given_up()->belief, 1e-3);
+  EXPECT_GE(std::count(all.begin(), all.end(), Status::kRecovering), 1);
+  EXPECT_FALSE(loc.given_up()->lost);
+  EXPECT_EQ(std::count(all.begin(), all.end(), Status::kLost), 0) << loc.estimate().message;
+  EXPECT_EQ(loc.losses(), 0u);
+  EXPECT_EQ(loc.estimate().status, Status::kLocalized) << loc.estimate().message;
 }
 
 TEST(LocalizerTest, SequenceThatFitsNowhereIsDiscardedAndRecoveryStartsAgain) {

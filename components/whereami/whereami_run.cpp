@@ -100,6 +100,7 @@ class Run {
   void OpenSpell();
   void CloseSpell(const std::string& ended_by);
   void OnKidnap();
+  void WatchGivenUp(bool left_right_pose);
   int EdgesAlike(int held_edge, int held_dir, int true_edge, int true_dir) const;
   void OnRecovery(const Recovery& r);
   void SendGoalAhead(const Recovery& r);
@@ -125,6 +126,7 @@ class Run {
   // status and edge count of the last pose sample, the kidnap seen.
   std::optional<WrongSpell> spell_;
   bool spell_is_kidnap_ = false;
+  std::uint64_t given_up_serial_ = 0;  // the last Localizer::GivenUp seen
   long spell_edges_ = 0;
   double spell_in_ = 0.0;
   message::LocalizationStatus last_status_ = message::LocalizationStatus::kRecovering;
@@ -232,6 +234,7 @@ void Run::Watch(const message::LocalizationPose& p) {
   last_localized_right_ = localized && correct;
   last_status_ = p.status;
   if (!result_.first) return;  // watched from the first pose on
+  WatchGivenUp(left_right_pose);
   if (left_right_pose && (!robot_.kidnapped() || result_.second)) ++result_.right_poses_given_up;
   if (spell_) {
     if (!localized || correct) {
@@ -251,6 +254,19 @@ void Run::Watch(const message::LocalizationPose& p) {
   }
   // LOST with no kidnap to notice (none yet, or the robot found itself again since).
   if (turned_lost && (!robot_.kidnapped() || result_.second)) ++result_.false_losts;
+}
+
+// A pose the localizer gave up (a new Localizer::GivenUp): right or wrong, and how.
+void Run::WatchGivenUp(bool left_right_pose) {
+  const std::optional<localizer::Localizer::GivenUp>& g =
+      stack_.localizer().localizer().given_up();
+  if (!g || g->serial == given_up_serial_) return;
+  given_up_serial_ = g->serial;
+  RunResult::GivenUpPose p;
+  p.pose = left_right_pose ? "right" : spell_ && spell_is_kidnap_ ? "kidnap" : "wrong";
+  p.belief = g->belief;
+  p.lost = g->lost;
+  result_.given_up.push_back(p);
 }
 
 // Whether a published pose names where the robot is, judged in the hallway view the

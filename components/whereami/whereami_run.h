@@ -118,6 +118,15 @@ struct RunResult {
   // Outside a kidnap's spell: a right LOCALIZED pose given up (to RECOVERING or LOST).
   int right_poses_given_up = 0;
   std::vector<WrongSpell> wrong_localized;
+  // Every LOCALIZED pose the filter gave up, once first localized (Localizer::GivenUp):
+  // whether it was right, the wrong pose a kidnap left or another wrong pose; the filter's
+  // belief in it when given up, and whether LOST was said (rather than RECOVERING).
+  struct GivenUpPose {
+    std::string pose;  // "right", "kidnap" or "wrong"
+    double belief = 0.0;
+    bool lost = false;
+  };
+  std::vector<GivenUpPose> given_up;
   std::vector<ConfidenceSample> confidences;
   int frames = 0;
   int doors_observed = 0;

@@ -77,7 +77,13 @@ IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
   IntegritySummary s;
   std::vector<double> edges, feet, wrong_edges, alike;
   std::map<std::string, int> ended_by;
+  std::map<std::string, std::vector<double>> given_up_beliefs;
+  std::map<std::string, int> given_up_lost;
   for (const RunResult& r : results) {
+    for (const RunResult::GivenUpPose& g : r.given_up) {
+      given_up_beliefs[g.pose].push_back(g.belief);
+      given_up_lost[g.pose] += g.lost;
+    }
     if (r.first) ++s.watched_runs;
     s.false_losts += r.false_losts;
     s.right_poses_given_up += r.right_poses_given_up;
@@ -99,6 +105,13 @@ IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
   s.wrong_spell_edges = SpreadOf(wrong_edges);
   s.alike = SpreadOf(alike);
   s.ended_by.assign(ended_by.begin(), ended_by.end());
+  for (const char* pose : {"right", "kidnap", "wrong"}) {
+    const auto it = given_up_beliefs.find(pose);
+    if (it == given_up_beliefs.end()) continue;
+    const std::vector<double>& b = it->second;
+    s.given_up.push_back({pose, static_cast<int>(b.size()), given_up_lost[pose],
+                          *std::min_element(b.begin(), b.end()), Median(b)});
+  }
   return s;
 }
 
@@ -126,6 +139,12 @@ void PrintIntegrity(const IntegritySummary& s, std::ostream& out) {
       s.wrong_spells > 0 ? fmt::format(" (sensed edges median {:.0f}, max {:.0f})",
                                        s.wrong_spell_edges.median, s.wrong_spell_edges.max)
                          : std::string());
+  for (const IntegritySummary::GivenUp& g : s.given_up) {
+    out << fmt::format(
+        "  {} {} poses given up: {} LOST, {} RECOVERING; the filter's belief in them then: "
+        "least {:.2g}, median {:.2g}\n",
+        g.n, g.pose, g.lost, g.n - g.lost, g.least_belief, g.median_belief);
+  }
 }
 
 Reliability ReliabilityOf(const std::vector<RunResult>& results) {
@@ -149,6 +168,11 @@ void PrintReliability(const Reliability& r, std::ostream& out) {
 }
 
 nlohmann::json ToJson(const IntegritySummary& s) {
+  nlohmann::json given_up = nlohmann::json::array();
+  for (const IntegritySummary::GivenUp& g : s.given_up) {
+    given_up.push_back({{"pose", g.pose}, {"n", g.n}, {"lost", g.lost},
+                        {"least_belief", g.least_belief}, {"median_belief", g.median_belief}});
+  }
   nlohmann::json ended = nlohmann::json::object();
   for (const auto& [how, n] : s.ended_by) ended[how] = n;
   return {{"kidnaps", s.kidnaps},
@@ -162,7 +186,8 @@ nlohmann::json ToJson(const IntegritySummary& s) {
           {"right_poses_given_up", s.right_poses_given_up},
           {"runs_with_false_lost", s.runs_with_false_lost},
           {"wrong_spells", s.wrong_spells},
-          {"wrong_spell_edges", ToJson(s.wrong_spell_edges)}};
+          {"wrong_spell_edges", ToJson(s.wrong_spell_edges)},
+          {"given_up", given_up}};
 }
 
 nlohmann::json ToJson(const Reliability& r) {

@@ -32,6 +32,17 @@ struct IntegritySummary {
   int runs_with_false_lost = 0;
   int wrong_spells = 0;        // wrong LOCALIZED spells outside a kidnap's
   Spread wrong_spell_edges;
+  // The LOCALIZED poses the filter gave up (RunResult::given_up), by what they were: how
+  // many, how many of them LOST (the rest RECOVERING), and the least and the median belief
+  // the filter had in them then.
+  struct GivenUp {
+    std::string pose;
+    int n = 0;
+    int lost = 0;
+    double least_belief = 1.0;
+    double median_belief = 0.0;
+  };
+  std::vector<GivenUp> given_up;  // right, kidnap, wrong: those that occurred
 };
 IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results);
 void PrintIntegrity(const IntegritySummary& s, std::ostream& out);

@@ -300,6 +300,10 @@ void PrintRun(const RunResult& r, const RunSetup& setup, const ToolOptions& opti
 }
 
 nlohmann::json RunJson(const RunResult& r) {
+  nlohmann::json given_up = nlohmann::json::array();
+  for (const RunResult::GivenUpPose& g : r.given_up) {
+    given_up.push_back({{"pose", g.pose}, {"belief", g.belief}, {"lost", g.lost}});
+  }
   return {{"seed", r.seed},
           {"start", r.start},
           {"first", ToJson(r.first)},
@@ -315,6 +319,7 @@ nlohmann::json RunJson(const RunResult& r) {
                                           : nlohmann::json(nullptr)},
           {"false_losts", r.false_losts},
           {"right_poses_given_up", r.right_poses_given_up},
+          {"given_up", given_up},
           {"wrong_localized_spells", r.wrong_localized.size()},
           {"frames", r.frames},
           {"doors_observed", r.doors_observed},

@@ -1,0 +1,92 @@
+// The integrity and reliability figures of a stickrep-whereami batch, added up from runs.
+#include "whereami_tool/integrity_report.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace stickrep::whereami {
+namespace {
+
+RunResult KidnapRun(long edges, double feet, int alike, const std::string& ended_by) {
+  RunResult r;
+  r.first = virtual_robot::PoseCheck{};
+  r.kidnapped = true;
+  r.after_kidnap = WrongSpell{edges, feet, ended_by};
+  r.kidnap_edges_alike = alike;
+  return r;
+}
+
+TEST(IntegrityReportTest, KidnapSpellsAreSpreadAndCountedAgainstTheEdgesAlike) {
+  std::vector<RunResult> runs = {KidnapRun(1, 10.0, 0, "RECOVERING"),
+                                 KidnapRun(2, 20.0, 1, "RECOVERING"),
+                                 KidnapRun(6, 80.0, 1, "LOST")};
+  // A run whose pose had been given up before the kidnap has no spell to count.
+  runs.push_back(KidnapRun(0, 0.0, 0, "not localized at the kidnap"));
+  const IntegritySummary s = SummarizeIntegrity(runs);
+  EXPECT_EQ(s.kidnaps, 3);
+  EXPECT_EQ(s.watched_runs, 4);
+  EXPECT_DOUBLE_EQ(s.edges.median, 2.0);
+  EXPECT_DOUBLE_EQ(s.edges.max, 6.0);
+  EXPECT_DOUBLE_EQ(s.feet.max, 80.0);
+  EXPECT_EQ(s.within_alike_plus_2, 2);  // 6 edges against 1 alike is beyond
+  ASSERT_EQ(s.ended_by.size(), 2u);
+  EXPECT_EQ(s.ended_by[0], (std::pair<std::string, int>{"LOST", 1}));
+  EXPECT_EQ(s.ended_by[1], (std::pair<std::string, int>{"RECOVERING", 2}));
+}
+
+TEST(IntegrityReportTest, PosesGivenUpAreGroupedByWhatTheyWereWithTheBeliefThen) {
+  RunResult a;
+  a.first = virtual_robot::PoseCheck{};
+  a.given_up = {{"right", 0.5, false}, {"kidnap", 2e-5, true}, {"right", 0.0027, false}};
+  RunResult b;
+  b.first = virtual_robot::PoseCheck{};
+  b.given_up = {{"kidnap", 0.3, false}, {"right", 0.8, false}};
+  b.false_losts = 1;
+  const IntegritySummary s = SummarizeIntegrity({a, b});
+  ASSERT_EQ(s.given_up.size(), 2u);  // no wrong pose given up: no row
+  EXPECT_EQ(s.given_up[0].pose, "right");
+  EXPECT_EQ(s.given_up[0].n, 3);
+  EXPECT_EQ(s.given_up[0].lost, 0);
+  EXPECT_DOUBLE_EQ(s.given_up[0].least_belief, 0.0027);
+  EXPECT_DOUBLE_EQ(s.given_up[0].median_belief, 0.5);
+  EXPECT_EQ(s.given_up[1].pose, "kidnap");
+  EXPECT_EQ(s.given_up[1].n, 2);
+  EXPECT_EQ(s.given_up[1].lost, 1);
+  EXPECT_DOUBLE_EQ(s.given_up[1].least_belief, 2e-5);
+  EXPECT_EQ(s.false_losts, 1);
+  EXPECT_EQ(s.runs_with_false_lost, 1);
+  std::ostringstream out;
+  PrintIntegrity(s, out);
+  EXPECT_NE(out.str().find("3 right poses given up: 0 LOST, 3 RECOVERING; the filter's belief "
+                           "in them then: least 0.0027, median 0.5"),
+            std::string::npos)
+      << out.str();
+  EXPECT_EQ(ToJson(s)["given_up"][1]["lost"], 1);
+}
+
+TEST(IntegrityReportTest, ReliabilityBinsCountTheShareOfPosesThatWereRight) {
+  RunResult r;
+  r.confidences = {{0.97, true, true}, {0.96, true, false}, {0.3, false, false},
+                   {0.999, true, true}};
+  const Reliability rel = ReliabilityOf({r});
+  int all = 0;
+  for (const ReliabilityBin& b : rel.all) all += b.n;
+  EXPECT_EQ(all, 4);
+  const auto bin_of = [](const std::vector<ReliabilityBin>& bins, double c) {
+    for (const ReliabilityBin& b : bins) {
+      if (c >= b.lo && c < b.hi) return b;
+    }
+    return bins.back();
+  };
+  const ReliabilityBin b = bin_of(rel.localized, 0.96);
+  EXPECT_EQ(b.n, 2);
+  EXPECT_DOUBLE_EQ(b.correct, 0.5);
+  EXPECT_DOUBLE_EQ(b.mean_confidence, (0.97 + 0.96) / 2.0);
+  EXPECT_EQ(bin_of(rel.localized, 0.3).n, 0);  // not published as LOCALIZED
+}
+
+}  // namespace
+}  // namespace stickrep::whereami
