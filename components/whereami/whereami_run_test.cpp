@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "whereami/test_setup.h"
@@ -62,6 +63,13 @@ TEST(WhereAmIRunTest, AKidnappedRobotIsNoticedAndRecovers) {
       << r.after_kidnap->ended_by;
   EXPECT_LE(r.after_kidnap->edges, r.kidnap_edges_alike + 2)
       << r.after_kidnap->distance_ft << " ft";
+  // Given up, the pose is recorded as the kidnap's, LOST exactly when the spell ended LOST.
+  if (r.after_kidnap->ended_by != "corrected") {
+    const auto kidnap = std::find_if(r.given_up.begin(), r.given_up.end(),
+                                     [](const RunResult::GivenUpPose& g) { return g.pose == "kidnap"; });
+    ASSERT_NE(kidnap, r.given_up.end());
+    EXPECT_EQ(kidnap->lost, r.after_kidnap->ended_by == "LOST") << kidnap->belief;
+  }
   ASSERT_TRUE(r.second.has_value()) << r.ended;
   EXPECT_TRUE(r.second->correct) << "edge " << r.second->edge << ", truth " << r.second->truth_edge;
 }
@@ -75,6 +83,10 @@ TEST(WhereAmIRunTest, APoseKeptWithoutAKidnapIsNeverDeclaredLost) {
   EXPECT_TRUE(r.first->correct);
   EXPECT_NE(r.ended.find("kept going"), std::string::npos) << r.ended;
   EXPECT_EQ(r.false_losts, 0);
+  for (const RunResult::GivenUpPose& g : r.given_up) {
+    EXPECT_NE(g.pose, "kidnap");
+    EXPECT_FALSE(g.lost) << g.pose << " pose given up at belief " << g.belief;
+  }
   for (const WrongSpell& w : r.wrong_localized) {
     EXPECT_LE(w.edges, 2) << "a wrong pose published as LOCALIZED, ended by " << w.ended_by;
   }
