@@ -252,8 +252,11 @@ void Run::Watch(const message::LocalizationPose& p) {
     }
     OpenSpell();
   }
-  // LOST with no kidnap to notice (none yet, or the robot found itself again since).
-  if (turned_lost && (!robot_.kidnapped() || result_.second)) ++result_.false_losts;
+  // LOST said for a right pose with no kidnap to notice (none yet, or the robot found itself
+  // again since). LOST for a wrong pose is the localizer doing its job.
+  if (turned_lost && left_right_pose && (!robot_.kidnapped() || result_.second)) {
+    ++result_.false_losts;
+  }
 }
 
 // A pose the localizer gave up (a new Localizer::GivenUp): right or wrong, and how.

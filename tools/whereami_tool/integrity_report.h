@@ -27,7 +27,7 @@ struct IntegritySummary {
   int within_alike_plus_2 = 0; // spells no longer than the edges alike plus 2
   std::vector<std::pair<std::string, int>> ended_by;  // how those spells ended
   int watched_runs = 0;        // runs watched after their first pose
-  int false_losts = 0;         // LOST said with no kidnap to notice
+  int false_losts = 0;         // LOST said for a right pose with no kidnap to notice
   int right_poses_given_up = 0;  // a right LOCALIZED pose left without a kidnap
   int runs_with_false_lost = 0;
   int wrong_spells = 0;        // wrong LOCALIZED spells outside a kidnap's
