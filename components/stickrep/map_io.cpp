@@ -365,7 +365,6 @@ std::string FormatNumber(double value) {
   return s;
 }
 
-
 bool NeedsFormat2(const Map& map) {
   if (!map.obstacles().empty()) return true;
   for (const Ring& ring : map.rings()) {
