@@ -293,8 +293,9 @@ dds::DataWriter* Participant::CreateDataWriter(const std::string& topic, dds::To
                                                dds::DataWriterListener* listener,
                                                const QosProfile& profile) {
   dds::Topic* t = GetTopic(topic, type);
-  dds::DataWriter* writer = publisher_->create_datawriter(
-      t, ToDataWriterQos(profile, publisher_->get_default_datawriter_qos()), listener);
+  dds::DataWriterQos qos = ToDataWriterQos(profile, publisher_->get_default_datawriter_qos());
+  if (!config_.shared_memory) qos.data_sharing().off();
+  dds::DataWriter* writer = publisher_->create_datawriter(t, qos, listener);
   if (writer == nullptr) {
     throw std::runtime_error("could not create a DDS writer on " + topic +
                              (config_.security.enabled()
@@ -309,8 +310,9 @@ dds::DataReader* Participant::CreateDataReader(const std::string& topic, dds::To
                                                dds::DataReaderListener* listener,
                                                const QosProfile& profile) {
   dds::Topic* t = GetTopic(topic, type);
-  dds::DataReader* reader = subscriber_->create_datareader(
-      t, ToDataReaderQos(profile, subscriber_->get_default_datareader_qos()), listener);
+  dds::DataReaderQos qos = ToDataReaderQos(profile, subscriber_->get_default_datareader_qos());
+  if (!config_.shared_memory) qos.data_sharing().off();
+  dds::DataReader* reader = subscriber_->create_datareader(t, qos, listener);
   if (reader == nullptr) {
     throw std::runtime_error("could not create a DDS reader on " + topic +
                              (config_.security.enabled()

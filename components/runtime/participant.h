@@ -45,7 +45,11 @@ struct ParticipantConfig {
   //   and restarted in a row never heard some or all of the processes they wait for;
   // - a stopped observer's full port held every writing process up for seconds, where a
   //   full UDP socket only loses that observer's samples.
-  // A profile that names its own transports keeps them.
+  // A profile that names its own transports keeps them. Off also turns off data sharing
+  // (Fast DDS's shared-memory delivery between the writers and readers of one host, used by
+  // default for plain types such as robot/odometry): a reader SIGKILLed while it held its
+  // notification mutex made the writer's next write wait 1 s on the dead owner and throw,
+  // and locomotion ended ("Interprocess mutex timeout when locking").
   bool shared_memory = false;
   // DDS Security (authentication, access control, encryption); off when its dir is empty.
   SecurityConfig security = {};

@@ -9,6 +9,7 @@
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 
+#include "basePubSubTypes.h"
 #include "common/input_error.h"
 #include "runtime/deployment_options.h"
 #include "runtime/system_config.h"
@@ -75,6 +76,26 @@ TEST(ParticipantTest, SharedMemoryAskedForIsUsedAlsoBesideAProfilesOwnTransports
   Participant both(profiled, Catalog());
   EXPECT_TRUE(HasTransport(both, /*shared_memory=*/true));
   EXPECT_TRUE(HasTransport(both, /*shared_memory=*/false));
+}
+
+// Data sharing (shared-memory delivery between the endpoints of one host) goes with shared
+// memory: robot/odometry is a plain type, for which Fast DDS would use it by default.
+TEST(ParticipantTest, DataSharingIsOffUnlessSharedMemoryIsAskedFor) {
+  // The participant owns each type support handed to it.
+  const auto odometry = [] { return new msgs::OdometryPubSubType(); };
+  ParticipantConfig config{TestDomainId(), "test", "", "", {}};
+  Participant udp_only(config, Catalog());
+  auto* writer = udp_only.CreateDataWriter("robot/odometry", odometry(), nullptr);
+  auto* reader = udp_only.CreateDataReader("robot/odometry", odometry(), nullptr);
+  EXPECT_EQ(writer->get_qos().data_sharing().kind(), eprosima::fastdds::dds::OFF);
+  EXPECT_EQ(reader->get_qos().data_sharing().kind(), eprosima::fastdds::dds::OFF);
+  config.shared_memory = true;
+  Participant shared(config, Catalog());
+  EXPECT_EQ(shared.CreateDataWriter("robot/odometry", odometry(), nullptr)
+                ->get_qos()
+                .data_sharing()
+                .kind(),
+            eprosima::fastdds::dds::AUTO);
 }
 
 TEST(ParticipantTest, TheSystemFileDecidesSharedMemory) {
