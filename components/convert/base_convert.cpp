@@ -107,6 +107,9 @@ Checked<message::Odometry> FromIdl(const msgs::Odometry& m) {
   if (!std::isfinite(m.pose().heading_rad())) {
     return Checked<message::Odometry>::Refused("non-finite heading");
   }
+  if (!std::isfinite(m.linear_speed_ftps())) {
+    return Checked<message::Odometry>::Refused("non-finite speed");
+  }
   message::Odometry s;
   s.header = FromIdl(m.header());
   s.x_in = m.pose().x_in();

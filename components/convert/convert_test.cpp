@@ -55,6 +55,9 @@ TEST(ConvertTest, OdometryAndWheelsRefuseNonFiniteValues) {
   o.distance_in(10.0);
   o.pose().heading_rad(std::nan(""));
   EXPECT_EQ(FromIdl(o).reason, "non-finite heading");
+  o.pose().heading_rad(0.0);
+  o.linear_speed_ftps(-std::numeric_limits<double>::infinity());
+  EXPECT_EQ(FromIdl(o).reason, "non-finite speed");
   msgs::WheelCommand w;
   w.left_speed_ftps(std::nan(""));
   EXPECT_FALSE(FromIdl(w).value);

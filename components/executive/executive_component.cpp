@@ -55,6 +55,7 @@ std::string ExecutiveComponent::Summary() const {
 
 void ExecutiveComponent::OnOdometry(const message::Odometry& o) {
   executive_.OnOdometer(o.distance_in);
+  mission_.OnBaseSpeed(o.linear_speed_ftps, o.header.stamp_ns * 1e-9);
   Report();
 }
 

@@ -1,6 +1,7 @@
 #include "executive/mission.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace stickrep::executive {
@@ -38,7 +39,7 @@ bool Mission::Required(const std::string& name) const {
 void Mission::OnComponentActive(const std::string& name) {
   active_.insert(name);
   if (state_ == MissionState::kStoppedFault && absent_.erase(name) > 0 && absent_.empty()) {
-    ResumeAfterFault();
+    ResumeWhenAtRest();
     return;
   }
   if (state_ != MissionState::kWaitingForComponents) return;
@@ -98,6 +99,33 @@ void Mission::OnComponentGone(const std::string& name, const std::string& why) {
   Enter(MissionState::kStoppedFault, "process '" + name + "' is gone (" + why +
                                          "): robot stopped until " + names +
                                          (absent_.size() > 1 ? " are" : " is") + " back");
+}
+
+bool Mission::BaseHeldAtRest() const {
+  return !base_reported_ || (base_at_rest_since_s_ >= 0.0 &&
+                             base_report_s_ - base_at_rest_since_s_ >= kFaultRestHoldS - 1e-9);
+}
+
+void Mission::ResumeWhenAtRest() {
+  if (BaseHeldAtRest()) {
+    ResumeAfterFault();
+    return;
+  }
+  Enter(MissionState::kStoppedFault,
+        "every required process is back: waiting for the base to come to rest");
+}
+
+void Mission::OnBaseSpeed(double speed_ftps, double now_s) {
+  base_reported_ = true;
+  base_report_s_ = now_s;
+  if (std::abs(speed_ftps) > kAtRestFtps) {
+    base_at_rest_since_s_ = -1.0;
+  } else if (base_at_rest_since_s_ < 0.0 || now_s < base_at_rest_since_s_) {
+    base_at_rest_since_s_ = now_s;
+  }
+  if (state_ == MissionState::kStoppedFault && absent_.empty() && BaseHeldAtRest()) {
+    ResumeAfterFault();
+  }
 }
 
 void Mission::ResumeAfterFault() {

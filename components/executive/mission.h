@@ -88,6 +88,14 @@ class Mission {
   void UpdateGoal(double remaining_in, double odometer_in);
   // Progress toward the goal.
   void OnOdometer(double odometer_in);
+  // The base's measured speed (odometry) at `now_s` on the base's clock. A fault stop is a
+  // full stop: once every absent process is back, the mission resumes only after the base
+  // has been at rest for kFaultRestHoldS, so a process restarted faster than the base can
+  // brake still leaves the robot stopped while it was absent. Until the base first reports,
+  // it is taken to be at rest.
+  void OnBaseSpeed(double speed_ftps, double now_s);
+  static constexpr double kAtRestFtps = 0.01;
+  static constexpr double kFaultRestHoldS = 0.2;
   const std::string& goal_id() const { return goal_.goal_id; }
 
   MissionState state() const { return state_; }
@@ -103,6 +111,9 @@ class Mission {
   bool Required(const std::string& name) const;
   // Every absent process is back: continue where the fault stopped the mission.
   void ResumeAfterFault();
+  // Every absent process is back: resume once the base is held at rest.
+  void ResumeWhenAtRest();
+  bool BaseHeldAtRest() const;
 
   MissionConfig config_;
   MissionState state_ = MissionState::kWaitingForComponents;
@@ -117,6 +128,9 @@ class Mission {
   bool pose_component_gone_ = false;  // the localizer was among them
   double align_start_s_ = -1.0;
   double in_envelope_since_s_ = -1.0;
+  bool base_reported_ = false;
+  double base_at_rest_since_s_ = -1.0;  // -1: moving
+  double base_report_s_ = 0.0;
   std::string message_;
   std::vector<std::string> transitions_;
 };

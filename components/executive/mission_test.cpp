@@ -176,6 +176,46 @@ TEST(MissionTest, EveryAbsentProcessMustBeBackBeforeTheRobotMovesAgain) {
   EXPECT_TRUE(m.Motion().move);
 }
 
+// A process restarted faster than the base can brake: the fault stop still completes.
+TEST(MissionTest, AfterAFaultTheRobotMovesAgainOnlyOnceTheBaseHasBeenAtRest) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnMotionState(true, 0.0);
+  m.OnMotionState(true, 1.0);
+  ASSERT_EQ(m.state(), MissionState::kRecoveringPose);
+  m.OnBaseSpeed(2.0, 10.0);
+  m.OnComponentGone("localizer", "it restarted");
+  m.OnComponentActive("localizer");  // back at once, the base still braking
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+  EXPECT_FALSE(m.Motion().move);
+  EXPECT_NE(m.last_message().find("waiting for the base to come to rest"), std::string::npos)
+      << m.last_message();
+  m.OnBaseSpeed(0.5, 10.5);
+  m.OnBaseSpeed(0.0, 11.0);
+  m.OnBaseSpeed(0.3, 11.1);  // not at rest after all: the hold starts over
+  m.OnBaseSpeed(0.0, 11.2);
+  m.OnBaseSpeed(0.0, 11.2 + Mission::kFaultRestHoldS / 2);
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);
+  m.OnBaseSpeed(0.0, 11.2 + Mission::kFaultRestHoldS);
+  EXPECT_EQ(m.state(), MissionState::kRecoveringPose);
+  EXPECT_NE(m.last_message().find("localizer restarted"), std::string::npos) << m.last_message();
+  EXPECT_TRUE(m.Motion().move);
+}
+
+TEST(MissionTest, ABaseAlreadyHeldAtRestLetsTheMissionResumeAsSoonAsTheProcessIsBack) {
+  Mission m(TwoComponents());
+  m.OnComponentActive("sonar");
+  m.OnComponentActive("localizer");
+  m.OnLocalized("x");
+  m.OnBaseSpeed(0.0, 5.0);
+  m.OnComponentGone("sonar", "no heartbeat for 2.0 s");
+  m.OnBaseSpeed(0.0, 5.0 + Mission::kFaultRestHoldS);
+  EXPECT_EQ(m.state(), MissionState::kStoppedFault);  // sonar still absent
+  m.OnComponentActive("sonar");
+  EXPECT_EQ(m.state(), MissionState::kLocalized);
+}
+
 TEST(MissionTest, AGoalInProgressContinuesAfterAFaultThatKeptThePose) {
   Mission m(TwoComponents());
   m.OnComponentActive("sonar");
