@@ -4,17 +4,24 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
 
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
+#include "common/quantile.h"
 #include "integration/process_fixture.h"
 #include "localizationPubSubTypes.h"
 #include "missionPubSubTypes.h"
 #include "runtime/process.h"
+#include "stickrep/map_io.h"
 #include "systemPubSubTypes.h"
 
 namespace stickrep::test {
@@ -162,6 +169,162 @@ TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
       << "\n"
       << Outputs();
   StopAllAndExpectCleanExit();
+}
+
+// A batch of kidnaps over DDS: a measurement, not run by ctest unless asked for
+// (STICKREP_KIDNAP_BATCH=N, optionally STICKREP_KIDNAP_SEED=first seed, default 101). Each
+// run is a seeded start on the small map at 3x real time; 4 s after the first pose the robot
+// is carried a seeded fraction (0.1-0.9) of the ring ahead, as `stickrep-whereami
+// --kidnap-jump-random` does in process. The wrong pose's spell runs from the jump (seen in
+// the ground truth) to the first published pose that is not LOCALIZED (LOST or RECOVERING)
+// or names the true place (corrected); its edges are the edges the robot entered meanwhile
+// (the distinct edges of the truth after the one it was carried to: the truth's edge flickers
+// at a boundary; the localizer's own count of edges sensed is not published while it
+// tracks), its feet the truth's travel. Asserted for each run: the spell
+// ends and a pose is recovered again. Printed: one line per kidnap and the median, 95th
+// percentile and maximum.
+struct DeployedKidnap {
+  long edges = 0;
+  double feet = 0.0;
+  std::string ended_by = "never";
+  bool recovered_right = false;
+};
+
+class KidnapBatchTest : public WhereAmITest {
+ protected:
+  KidnapBatchTest() : WhereAmITest(64) {}
+
+  DeployedKidnap RunOne(int seed, double jump_in) {
+    DeployedKidnap k;
+    std::optional<msgs::GroundTruth> truth;
+    std::optional<msgs::LocalizationPose> first, again, latest;
+    std::optional<msgs::GroundTruth> truth_again;
+    bool kidnapped = false, spell_open = false, spell_done = false;
+    double kidnap_distance_in = 0.0;
+    std::set<uint32_t> entered;  // the truth's edges since the kidnap
+    std::string last_status;
+    runtime::Reader<msgs::GroundTruthPubSubType> truths(
+        participant(), executor(), "sim/ground_truth", [&](const msgs::GroundTruth& g) {
+          // Carried: far in the building, or (a ring of one corridor goes down one side and
+          // back the other) to the other side of the hallway, far along the ring.
+          const int de = truth ? std::abs(static_cast<int>(g.edge_index()) -
+                                          static_cast<int>(truth->edge_index()))
+                               : 0;
+          if (truth && !kidnapped &&
+              (std::hypot(g.pose().x_in() - truth->pose().x_in(),
+                          g.pose().y_in() - truth->pose().y_in()) > 120.0 ||
+               std::min(de, kSmallMapEdges - de) > 2)) {
+            kidnapped = spell_open = true;
+            kidnap_distance_in = g.distance_in();
+          }
+          if (spell_open) entered.insert(g.edge_index());
+          truth = g;
+        });
+    runtime::Reader<msgs::LocalizationPosePubSubType> poses(
+        participant(), executor(), "localization/pose", [&](const msgs::LocalizationPose& p) {
+          const bool localized = p.status() == msgs::LOCALIZATION_LOCALIZED;
+          if (localized && !first) first = p;
+          if (localized) latest = p;
+          if (spell_open) {
+            const bool right = localized && Matches(p.best(), *truth, truth->forward_in_ring());
+            if (!localized || right) {
+              k.edges = std::max(0L, static_cast<long>(entered.size()) - 1);
+              k.feet = (truth->distance_in() - kidnap_distance_in) / 12.0;
+              k.ended_by = right ? "corrected"
+                                 : p.status() == msgs::LOCALIZATION_LOST ? "LOST" : "RECOVERING";
+              spell_open = false;
+              spell_done = true;
+            }
+          } else if (spell_done && localized && !again) {
+            again = p;
+            truth_again = truth;
+          }
+        });
+    runtime::Reader<msgs::MissionStatusPubSubType> status(
+        participant(), executor(), "mission/status",
+        [&](const msgs::MissionStatus& s) { last_status = s.message(); });
+    runtime::Writer<msgs::MissionGoalPubSubType> goals(participant(), "mission/goal");
+    const std::string name = "kidnap_batch" + std::to_string(seed);
+    StartStack(name, {{"seed", std::to_string(seed)},
+                      {"kidnap_after_localized_s", "4"},
+                      {"kidnap_jump_in", std::to_string(jump_in)}});
+    EXPECT_TRUE(SpinUntil([&] { return first.has_value(); }, 150.0)) << Outputs();
+    if (!first) return k;
+    // A goal half the ring ahead of the pose held keeps the robot travelling through and
+    // after the kidnap; a new one when it is reached (on a wrong pose, the robot stops).
+    int goals_sent = 0;
+    const auto send_goal = [&] {
+      const msgs::PoseHypothesis& from = latest->best();
+      const int edge = static_cast<int>(from.edge_index());
+      const int ahead = from.forward() ? edge + kSmallMapEdges / 2
+                                       : edge - kSmallMapEdges / 2 + kSmallMapEdges;
+      msgs::MissionGoal goal;
+      const std::string id = "far" + std::to_string(++goals_sent);
+      goal.goal_id(id);
+      goal.target(from.ring_id() + "/" + std::to_string(ahead % kSmallMapEdges));
+      SpinUntil(
+          [&] {
+            goals.Publish(goal, runtime::WallClockNowNs());
+            return SpinUntil(
+                [&] { return last_status.find("goal '" + id + "'") != std::string::npos; }, 0.5);
+          },
+          20.0);
+    };
+    send_goal();
+    EXPECT_TRUE(SpinUntil(
+        [&] {
+          if (!spell_done && last_status.find("reached") != std::string::npos) send_goal();
+          return spell_done;
+        },
+        150.0))
+        << "seed " << seed << ": the wrong pose was never given up; " << last_status;
+    EXPECT_TRUE(SpinUntil([&] { return again.has_value(); }, 150.0))
+        << "seed " << seed << ": no pose recovered after the kidnap";
+    if (again) {
+      k.recovered_right = Matches(again->best(), *truth_again, truth_again->forward_in_ring());
+    }
+    StopAllAndExpectCleanExit();
+    return k;
+  }
+};
+
+TEST_F(KidnapBatchTest, DeployedKidnapsAreGivenUpAndRecovered) {
+  const char* runs_text = std::getenv("STICKREP_KIDNAP_BATCH");
+  if (runs_text == nullptr) {
+    GTEST_SKIP() << "a measurement: STICKREP_KIDNAP_BATCH=N runs N kidnaps (docs/whereami.md)";
+  }
+  const int runs = std::atoi(runs_text);
+  const char* seed_text = std::getenv("STICKREP_KIDNAP_SEED");
+  const int first_seed = seed_text != nullptr ? std::atoi(seed_text) : 101;
+  const double ring_in = map::LoadMap(kSmallMap).ring(0).LengthIn();
+  std::printf("[kidnap batch] seeds %d-%d, small map ring %.0f in, 3x real time\n", first_seed,
+              first_seed + runs - 1, ring_in);
+  std::vector<double> edges, feet;
+  std::map<std::string, int> ended_by;
+  int right = 0;
+  for (int seed = first_seed; seed < first_seed + runs; ++seed) {
+    std::mt19937_64 rng(static_cast<uint64_t>(seed));
+    const double jump_in = std::uniform_real_distribution<double>(0.1, 0.9)(rng) * ring_in;
+    const DeployedKidnap k = RunOne(seed, jump_in);
+    std::printf("[kidnap batch] seed %d jump %.0f in: wrong pose LOCALIZED over %ld edges, "
+                "%.1f ft, ended by %s; recovered %s\n",
+                seed, jump_in, k.edges, k.feet, k.ended_by.c_str(),
+                k.recovered_right ? "right" : "wrong or not");
+    std::fflush(stdout);
+    if (k.ended_by == "never") continue;
+    edges.push_back(static_cast<double>(k.edges));
+    feet.push_back(k.feet);
+    ended_by[k.ended_by]++;
+    right += k.recovered_right ? 1 : 0;
+  }
+  ASSERT_FALSE(edges.empty());
+  std::printf("[kidnap batch] %zu kidnaps: edges median %.0f, p95 %.0f, max %.0f; feet median "
+              "%.1f, p95 %.1f, max %.1f; ended by LOST %d, RECOVERING %d, corrected %d; %d "
+              "recovered right\n",
+              edges.size(), Median(edges), Quantile(edges, 0.95),
+              *std::max_element(edges.begin(), edges.end()), Median(feet), Quantile(feet, 0.95),
+              *std::max_element(feet.begin(), feet.end()), ended_by["LOST"],
+              ended_by["RECOVERING"], ended_by["corrected"], right);
 }
 
 // Floors the generators did not make (maps/README.md, "Realistic floors"), every process on
