@@ -31,6 +31,15 @@ void EdgeAssembler::AddSighting(const DoorSighting& s) {
   open_.push_back(std::move(t));
 }
 
+std::optional<double> EdgeAssembler::silent_in() const {
+  if (!last_jamb_in_ || corner_ || direction_ == 0) return std::nullopt;
+  double reach = odometer_in_ - direction_ * config_.silent_margin_in;
+  for (const Track& t : open_) {
+    if (direction_ * (Near(t) - reach) < 0.0) reach = Near(t);
+  }
+  return std::max(0.0, direction_ * (reach - *last_jamb_in_));
+}
+
 void EdgeAssembler::Restart() {
   open_.clear();
   corner_.reset();

@@ -29,6 +29,10 @@ struct EdgeAssemblerConfig {
   // be seen again and its frames are all in (half the field of view's footprint at the
   // usual range, plus margin).
   double out_of_view_in = 48.0;
+  // A door whose near jamb is less than this behind the optical axis may not yet have been
+  // seen whole (the widest single leaf, 40 in, and the frames' spacing): silent_in() leaves
+  // that stretch out.
+  double silent_margin_in = 48.0;
   // Doors seen in fewer frames are dropped as spurious (a 36 in door stays in view for
   // several frames at 6.24 in per frame, SPEC §8).
   int min_frames = 2;
@@ -114,6 +118,11 @@ class EdgeAssembler {
   // edge before it turned back (NaN when no edge had been emitted, or in a turn).
   double reversal_travel_in() const { return reversal_travel_in_; }
   int travel_direction() const { return direction_; }
+  // How far past the far end of the last emitted edge the pipeline has seen nothing: no
+  // door emitted, none in view waiting to be decided, up to silent_margin_in behind the
+  // optical axis. A door the map has within that stretch was missed (or the map place is
+  // wrong). Empty before the first edge and while a corner is being turned or placed.
+  std::optional<double> silent_in() const;
   // Odometer reading at the far end of the last emitted door; empty before the first.
   std::optional<double> last_edge_end_in() const { return last_jamb_in_; }
   // Edges emitted since the last Restart(), in order.

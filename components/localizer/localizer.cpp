@@ -13,6 +13,8 @@ namespace {
 // A place of the filter this many edges or fewer from the tracked one, in the same direction,
 // is the tracked pose slipped (a reversal, a missed anchor), not another place.
 constexpr int kNearEdges = 4;
+// The silence since the last edge is weighed again each time it has grown by this much.
+constexpr double kSilenceStepIn = 1.0;
 }  // namespace
 
 const char* ToString(Status s) {
@@ -76,6 +78,15 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
   // its anchor meanwhile); without it, while the tracker keeps it.
   const bool localized = bayes_ ? estimate_.status == Status::kLocalized
                                 : tracker_.status() == TrackStatus::kTracking;
+  // While recovering, what has not been sensed since the last edge is evidence too: a door
+  // or corner the best place expects by now that did not come keeps it from being declared
+  // (confirm_silent_in). (While localized the filter's belief is weighed by edges alone.)
+  if (bayes_ && !localized && edges.empty() && bayes_->edges() > 0) {
+    const std::optional<double> silent = assembler_.silent_in();
+    if (silent && std::abs(*silent - bayes_->silent_in()) >= kSilenceStepIn) {
+      bayes_->SetSilence(*silent);
+    }
+  }
   if (localized) return Track(odometer_in, edges);
   const bool changed = Recover(odometer_in, edges);
   if (estimate_.status == Status::kLocalized) StartTracking(odometer_in);
@@ -235,8 +246,16 @@ void Localizer::Lose(const std::string& why) {
 
 bool Localizer::Recover(double odometer_in, const std::vector<map::SensedEdge>& edges) {
   if (edges.empty()) {
-    if (!estimate_.hypotheses.empty()) Rebuild(odometer_in, estimate_.message);
-    return false;
+    if (estimate_.hypotheses.empty()) return false;
+    // The silence since the last edge may confirm the best place (confirm_silent_in).
+    const Status before = estimate_.status;
+    const bool declared = bayes_ && before != Status::kLocalized &&
+                          bayes_->status() == recovery::RecoveryStatus::kLocalized;
+    Rebuild(odometer_in, declared ? fmt::format("best place has posterior {:.4f} with {:.0f} in "
+                                                "sensed past the last edge: pose recovered",
+                                                bayes_->best().probability, bayes_->silent_in())
+                                  : estimate_.message);
+    return declared;
   }
   edges_total_ += edges.size();
   if (bayes_) {
@@ -318,9 +337,16 @@ void Localizer::Rebuild(double odometer_in, const std::string& message) {
 
 Hypothesis Localizer::MakeHypothesis(int last, int dir, double past_in,
                                      double probability) const {
-  // The newest sensed edge has left the view: the robot is in the next edge.
+  // The newest sensed edge has left the view: the robot is in the next edge, or further on
+  // by the odometer (a door it has passed may still be in view, not yet emitted).
   const int next = index_.Step(last, dir);
-  const int g = next >= 0 ? next : last;
+  int g = next >= 0 ? next : last;
+  for (int i = 0; i < kNearEdges && past_in > index_.metric(g); ++i) {
+    const int ahead = index_.Step(g, dir);
+    if (ahead < 0 || index_.open_end(ahead)) break;
+    past_in -= index_.metric(g);
+    g = ahead;
+  }
   const int ring = index_.RingOf(g);
   return MakeHypothesisAt(ring, g - index_.RingOffset(ring), dir, past_in, probability);
 }

@@ -27,6 +27,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   config.assembler.out_of_view_in = c.Get<double>("out_of_view_in", 6.0, 240.0, "in");
   config.assembler.min_frames = c.Get<int>("min_frames", 1, 20);
   config.assembler.min_wall_in = c.Get<double>("min_wall_in", 0.0, 60.0, "in");
+  config.assembler.silent_margin_in = c.Get<double>("silent_margin_in", 0.0, 240.0, "in");
   config.max_hypotheses = c.Get<int>("max_hypotheses", 1, 64);
   s.view.max_step_in = c.Get<double>("max_step_in", 0.0, 120.0, "in");
   s.view.max_bend_deg = c.Get<double>("max_bend_deg", 0.0, 60.0, "deg");
@@ -45,6 +46,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   }
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);
   s.bayes_confirm_edges = c.Get<int>("bayes_confirm_edges", 0, 20);
+  s.bayes_confirm_silent_in = c.Get<double>("bayes_confirm_silent_in", 0.0, 600.0, "in");
   s.bayes_keep_threshold = c.Get<double>("bayes_keep_threshold", 0.0, 0.999999);
   if (s.bayes_keep_threshold > s.bayes_threshold) {
     c.Fail("bayes_keep_threshold", "must not be above the posterior localized_confidence needs (" +
@@ -71,6 +73,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes.settings.threshold = settings.bayes_threshold;
     config.bayes.settings.outlier = settings.bayes_outlier;
     config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;
+    config.bayes.settings.confirm_silent_in = settings.bayes_confirm_silent_in;
     config.bayes.settings.kidnap_per_edge = settings.bayes_kidnap_per_edge;
     config.keep_threshold = settings.bayes_keep_threshold;
     config.calibration = settings.calibration;

@@ -30,6 +30,7 @@ struct LocalizerSettings {
   double bayes_outlier = 1e-4;
   // Further edges over which the best place must keep the threshold.
   int bayes_confirm_edges = 0;
+  double bayes_confirm_silent_in = 0.0;
   // Once localized: the belief the pose must keep to stay LOCALIZED, the belief under which
   // it is LOST (between the two: RECOVERING), and the probability per edge that the robot was
   // carried anywhere (recovery::BayesSettings::kidnap_per_edge).

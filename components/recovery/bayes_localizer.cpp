@@ -45,6 +45,10 @@ void BayesLocalizer::Reset() {
   edges_ = 0;
   above_ = 0;
   skip_partial_ = false;
+  edge_best_ = PoseBelief{};
+  silent_in_ = 0.0;
+  silence_.clear();
+  silence_norm_ = 1.0;
 }
 
 void BayesLocalizer::Reverse(double travelled_in) {
@@ -586,17 +590,97 @@ void BayesLocalizer::Normalise() {
     if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
   }
   // The pose is declared once the best place has held the threshold over confirm_edges
-  // further edges as well.
+  // further edges as well (and confirm_silent_in of silence, UpdateStatus).
   above_ = best_.probability >= model_.settings.threshold ? above_ + 1 : 0;
-  status_ = above_ > model_.settings.confirm_edges ? RecoveryStatus::kLocalized
-                                                   : RecoveryStatus::kAmbiguous;
+  silent_in_ = 0.0;
+  silence_.clear();
+  silence_norm_ = 1.0;
+  edge_best_ = best_;
+  UpdateStatus();
+}
+
+void BayesLocalizer::UpdateStatus() {
+  // The silence confirms it, or the next edge did: the place held the threshold over it.
+  const bool confirmed = silent_in_ >= model_.settings.confirm_silent_in ||
+                         above_ > model_.settings.confirm_edges + 1;
+  // Silence only weighs the place the edges put first: it never declares another one.
+  const bool same = best_.edge == edge_best_.edge && best_.dir == edge_best_.dir;
+  const bool held = above_ > model_.settings.confirm_edges && same &&
+                    best_.probability >= model_.settings.threshold && confirmed;
+  status_ = held ? RecoveryStatus::kLocalized : RecoveryStatus::kAmbiguous;
+}
+
+void BayesLocalizer::SetSilence(double silent_in) {
+  if (edges_ == 0 || states_ == 0) return;
+  silent_in_ = std::max(0.0, silent_in);
+  silence_.assign(states_, 1.0);
+  double sum = outside_;
+  for (int s = 0; s < states_; ++s) {
+    if (n_[s] > 0.0) silence_[s] = SilenceWeight(s / 2, (s & 1) ? -1 : +1, silent_in_);
+    sum += n_[s] * silence_[s] + (Mass(s) - n_[s]);
+  }
+  silence_norm_ = sum > 0.0 ? 1.0 / sum : 1.0;
+  best_ = PoseBelief{};
+  for (int s = 0; s < states_; ++s) {
+    const double p = ViewMass(s);
+    if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
+  }
+  // Silence can withdraw the place the edges put first, never confirm another (UpdateStatus).
+  const bool same = best_.edge == edge_best_.edge && best_.dir == edge_best_.dir;
+  if (!same || best_.probability < model_.settings.threshold) above_ = 0;
+  UpdateStatus();
+}
+
+double BayesLocalizer::SilenceWeight(int g, int dir, double silent_in) const {
+  // Phi(z): the probability that a sensed end falls at or beyond silent_in.
+  const auto beyond = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
+  const double eps = model_.settings.outlier;
+  double start = 0.0, weight = 1.0, survive = 0.0;
+  int missed = 0;
+  int cur = index_.Step(g, dir);
+  while (weight > 0.0) {
+    // Off an open ring or out through a corridor's open end: nothing ahead is known.
+    if (cur < 0 || index_.open_end(cur)) {
+      survive += weight;
+      break;
+    }
+    const double sigma = std::max(1.0, model_.noise.WallSigmaIn(start));
+    if (start - silent_in > 4.0 * sigma) {
+      survive += weight;  // whatever ends from here on ends beyond the silence
+      break;
+    }
+    if (map::IsDoorCode(index_.code(cur))) {
+      // Seen, it ends the sensed wall at its near jamb; missed, the wall runs on over it.
+      survive += weight * (1.0 - Missed(cur)) * beyond((start - silent_in) / sigma);
+      if (++missed > model_.settings.max_missed_doors) break;
+      weight *= Missed(cur);
+    } else {
+      const int after = index_.Step(cur, dir);
+      const double a_out = dir > 0 ? index_.angle_end(cur) : index_.angle_start(cur);
+      if (after >= 0 && !index_.open_end(after) && !Coplanar(a_out)) {
+        // A corner: the follower turns there.
+        const double end = start + index_.metric(cur);
+        const double end_sigma = std::max(1.0, model_.noise.WallSigmaIn(end));
+        survive += weight * beyond((end - silent_in) / end_sigma);
+        break;
+      }
+    }
+    start += index_.metric(cur);
+    cur = index_.Step(cur, dir);
+  }
+  return eps + (1.0 - eps) * survive;
+}
+
+double BayesLocalizer::ViewMass(int s) const {
+  if (silence_.empty()) return Mass(s);
+  return (n_[s] * silence_[s] + (Mass(s) - n_[s])) * silence_norm_;
 }
 
 std::vector<PoseBelief> BayesLocalizer::Top(int k) const {
   std::vector<PoseBelief> all;
   if (edges_ == 0) return all;
   for (int s = 0; s < states_; ++s) {
-    const double p = Mass(s);
+    const double p = ViewMass(s);
     if (p > 0.0) all.push_back({s / 2, (s & 1) ? -1 : +1, p});
   }
   const std::size_t n = std::min<std::size_t>(all.size(), std::max(k, 0));
@@ -609,8 +693,7 @@ std::vector<PoseBelief> BayesLocalizer::Top(int k) const {
 
 double BayesLocalizer::PoseProbability(int edge, int dir) const {
   if (edges_ == 0 || edge < 0 || edge >= index_.EdgeCount()) return 0.0;
-  const int s = State(edge, dir);
-  return Mass(s);
+  return ViewMass(State(edge, dir));
 }
 
 }  // namespace stickrep::recovery

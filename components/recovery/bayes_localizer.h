@@ -77,6 +77,16 @@ class BayesLocalizer {
   // and the place it turned in is weighed by that distance (ReverseAfter).
   void Reverse(double travelled_in = std::numeric_limits<double>::quiet_NaN());
 
+  // The robot is `silent_in` past the far end of the last sensed edge and the pipeline has
+  // sensed nothing over that stretch. Each place is weighed by the probability that the
+  // edge it expects next, as sensed, ends that far away or further: every door before was
+  // missed, the odometer read long, or the place is wrong (outlier). A place that expected
+  // a door or a corner well inside the stretch loses its belief. This is a view: best(),
+  // Top(), PoseProbability() and status() give the weighed belief until the next Add(),
+  // Reverse() or Reset(), which weighs the edge that ends the silence as usual.
+  void SetSilence(double silent_in);
+  double silent_in() const { return silent_in_; }
+
   RecoveryStatus status() const { return status_; }
   // The most probable (edge, direction) and its posterior.
   const PoseBelief& best() const { return best_; }
@@ -129,6 +139,12 @@ class BayesLocalizer {
   void ClearLeafPhases();
   // The belief of state s over all its phases.
   double Mass(int s) const;
+  // Mass(s) as SetSilence() weighs it, normalised.
+  double ViewMass(int s) const;
+  // The probability that the edge after N(g), travelling dir, is sensed to end at least
+  // silent_in past g's far end (SetSilence).
+  double SilenceWeight(int g, int dir, double silent_in) const;
+  void UpdateStatus();
   // Reverse() of the mass at (the last sensed edge before `first`, dir), travelled_in into
   // `first` and beyond: into nn_.
   void ReverseAfter(int first, int dir, double mass, double travelled_in);
@@ -147,6 +163,10 @@ class BayesLocalizer {
   RecoveryStatus status_ = RecoveryStatus::kEmpty;
   PoseBelief best_;
   int above_ = 0;  // consecutive edges the best place held the threshold
+  double silent_in_ = 0.0;
+  PoseBelief edge_best_;         // best() after the last edge, before any silence
+  std::vector<double> silence_;  // SilenceWeight of each state's N phase; empty: none
+  double silence_norm_ = 1.0;
   bool skip_partial_ = false;  // after Reverse(): the re-seen partial edge is not evidence
   // Belief that left the map's rings through an open end with the last sensed wall: it
   // starts again from the prior at the next edge.

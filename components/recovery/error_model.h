@@ -129,6 +129,10 @@ struct BayesSettings {
   // Further edges over which the best place must keep the threshold before it is reported
   // (0: at once, as the study does).
   int confirm_edges = 0;
+  // ... and then over this much silence (SetSilence) after the edge that brought it there,
+  // or over one more edge: the place's next door or corner, if it is near, must not be
+  // missing (0: at once).
+  double confirm_silent_in = 0.0;
   // Steps in a wall the follower passes straight (a pilaster's or shallow recess's sides up
   // to this long): a reversal's distance does not run along them. The localizer sets it to
   // its hallway view's max_step_in.
