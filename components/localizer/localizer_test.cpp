@@ -122,6 +122,30 @@ TEST(EdgeAssemblerTest, TwoDoorsGiveAPartialWallADoorAnExactWallAndADoor) {
   EXPECT_EQ(edges[3].code, map::DoorCode(map::DoorClass::k40));
 }
 
+TEST(EdgeAssemblerTest, SilenceRunsFromTheLastDoorToTheMarginOrTheFirstDoorInView) {
+  EdgeAssemblerConfig config;
+  config.silent_margin_in = 48.0;
+  EdgeAssembler a(config);
+  a.Advance(0.0);
+  EXPECT_FALSE(a.silent_in().has_value());  // no edge yet
+  // A 36 in door centred at 100: emitted once the axis is out_of_view_in past its centre.
+  for (double odo = 6.0; odo <= 160.0; odo += 6.0) {
+    if (std::abs(100.0 - odo) < 12.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.8, 100.0});
+    a.Advance(odo);
+  }
+  ASSERT_TRUE(a.last_edge_end_in().has_value());
+  EXPECT_THAT(*a.last_edge_end_in(), DoubleNear(118.0, 1e-9));
+  ASSERT_TRUE(a.silent_in().has_value());
+  EXPECT_THAT(*a.silent_in(), DoubleNear(0.0, 1e-9));  // 160 - 48 is behind the far jamb
+  a.Advance(250.0);
+  EXPECT_THAT(*a.silent_in(), DoubleNear(250.0 - 48.0 - 118.0, 1e-9));
+  // A door in view, not yet decided: the silence ends at its near jamb.
+  // (Its centre 36 in behind the axis: within out_of_view_in, its near jamb behind the margin.)
+  a.AddSighting({map::DoorClass::k36, 36.0, 0.8, 220.0});
+  a.Advance(256.0);
+  EXPECT_THAT(*a.silent_in(), DoubleNear(202.0 - 118.0, 1e-9));
+}
+
 TEST(EdgeAssemblerTest, FirstOdometerReadingAwayFromZeroStillGivesTheRightDirection) {
   EdgeAssembler a;
   a.Advance(500.0);

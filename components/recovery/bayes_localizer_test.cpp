@@ -145,6 +145,63 @@ TEST_F(BayesLocalizerTest, ConfirmationWaitsForTheThresholdToHoldOverMoreEdges) 
   EXPECT_EQ(later.best().edge, now.best().edge);
 }
 
+// The corridor: W120 D36 W60 D36 W60 D32 W200 D40 W90 D36 W75 D40 W150, corners at its ends.
+TEST_F(BayesLocalizerTest, SilenceWithdrawsThePlacesWhoseNextDoorShouldHaveComeByNow) {
+  BayesLocalizer b = Make(ErrorModel::Paper());
+  b.Add(Wall(50, kNaN, true));
+  b.Add(Door(DoorClass::k36));
+  // Doors 1, 3 and 9 either way fit; after all but door 1 travelled backward (W120 to the
+  // corner) the map has a door or corner within 90 in.
+  const double alone = b.PoseProbability(1, -1);
+  ASSERT_LT(alone, 0.9);
+  b.SetSilence(0.0);
+  EXPECT_NEAR(b.PoseProbability(1, -1), alone, 1e-4);
+  b.SetSilence(105.0);
+  EXPECT_EQ(b.best().edge, 1);
+  EXPECT_EQ(b.best().dir, -1);
+  const double after = b.PoseProbability(1, -1);
+  EXPECT_GT(after, 2.0 * alone);
+  double sum = 0.0;
+  for (const PoseBelief& p : b.Top(1000)) sum += p.probability;
+  EXPECT_NEAR(sum, 1.0, 1e-9);
+  // Past that place's corner too: silence cannot explain it either.
+  b.SetSilence(400.0);
+  EXPECT_LT(b.PoseProbability(1, -1), after);
+  // The next edge ends the silence: the belief is the edges' again.
+  b.Add(Wall(118));
+  EXPECT_EQ(b.silent_in(), 0.0);
+}
+
+TEST_F(BayesLocalizerTest, ConfirmationBySilenceDeclaresOnlyAPlaceWhoseNextDoorIsStillAhead) {
+  BayesModel m;
+  m.confusion = Resolve(ErrorModel::Paper(), index_);
+  m.settings.threshold = 0.6;
+  m.settings.confirm_silent_in = 60.0;
+  BayesLocalizer b(index_, m), c(index_, m);
+  BayesLocalizer now = Make(ErrorModel::Paper(), 0.6);
+  // Up to the edge at which the place first holds the threshold.
+  for (const map::SensedEdge& e : {Wall(40, kNaN, true), Door(DoorClass::k36), Wall(60),
+                                   Door(DoorClass::k32), Wall(200)}) {
+    b.Add(e);
+    c.Add(e);
+    now.Add(e);
+    if (now.status() == RecoveryStatus::kLocalized) break;
+  }
+  ASSERT_EQ(now.status(), RecoveryStatus::kLocalized);
+  const int next = index_.Step(now.best().edge, now.best().dir);
+  ASSERT_GE(next, 0);
+  ASSERT_GT(index_.metric(next), 70.0);  // the place's next edge runs on past 60 in
+  EXPECT_EQ(b.status(), RecoveryStatus::kAmbiguous);  // held the threshold, not confirmed
+  b.SetSilence(30.0);
+  EXPECT_EQ(b.status(), RecoveryStatus::kAmbiguous);
+  b.SetSilence(60.0);
+  EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
+  EXPECT_EQ(b.best().edge, now.best().edge);
+  // Long past that edge and whatever follows it: the place is withdrawn, not declared.
+  c.SetSilence(600.0);
+  EXPECT_EQ(c.status(), RecoveryStatus::kAmbiguous);
+}
+
 TEST_F(BayesLocalizerTest, PosteriorSumsToOneAndTopIsSorted) {
   BayesLocalizer b = Make(ErrorModel::Paper());
   b.Add(Door(DoorClass::k36));
