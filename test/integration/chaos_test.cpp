@@ -63,7 +63,9 @@ std::optional<int> ChildPid(int parent, const std::string& name) {
 
 struct Kill {
   std::string victim;
+  int pid;
   double at_s;
+  double restarted_s = -1.0;  // when the launcher's new process was first seen in /proc
 };
 
 struct StatusSample {
@@ -145,6 +147,15 @@ class ChaosTest : public ProcessFixture {
     return std::nullopt;
   }
 
+  // Notes when each killed process's successor appears among the launcher's children.
+  static void NoteRestarts(std::vector<Kill>& kills, int launcher) {
+    for (Kill& k : kills) {
+      if (k.restarted_s >= 0.0) continue;
+      const auto pid = ChildPid(launcher, k.victim);
+      if (pid && *pid != k.pid) k.restarted_s = WallNowS();
+    }
+  }
+
   // Sends a goal a few edges ahead when the mission holds, to keep the robot travelling.
   void KeepBusy(msgs::MissionGoal& goal, runtime::Writer<msgs::MissionGoalPubSubType>& goals) {
     const bool holding = !status_.empty() && (status_.back().state == msgs::MISSION_LOCALIZED ||
@@ -204,7 +215,11 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
   std::uniform_real_distribution<double> interval(10.0, 20.0);
   std::vector<std::string> round;  // the victims not yet killed in this round
   for (double next = WallNowS() + interval(rng); next < chaos_end; next += interval(rng)) {
-    SpinUntil([&] { KeepBusy(goal, goals); return WallNowS() >= next; }, next - WallNowS() + 60.0);
+    SpinUntil([&] {
+      KeepBusy(goal, goals);
+      NoteRestarts(kills, launch.pid());
+      return WallNowS() >= next;
+    }, next - WallNowS() + 60.0);
     if (round.empty()) {
       round.assign(std::begin(kVictims), std::end(kVictims));
       std::shuffle(round.begin(), round.end(), rng);
@@ -213,17 +228,22 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
     round.pop_back();
     const auto pid = ChildPid(launch.pid(), victim);
     ASSERT_TRUE(pid.has_value()) << victim << " is not running\n" << Outputs();
-    kills.push_back({victim, WallNowS()});
+    kills.push_back({victim, *pid, WallNowS()});
     ASSERT_EQ(kill(*pid, SIGKILL), 0);
     std::printf("[chaos] %.1f s: killed %s (pid %d)\n", kills.back().at_s - kills.front().at_s,
                 victim.c_str(), *pid);
   }
-  SpinUntil([&] { KeepBusy(goal, goals); return WallNowS() >= chaos_end; }, 60.0);
+  SpinUntil([&] {
+    KeepBusy(goal, goals);
+    NoteRestarts(kills, launch.pid());
+    return WallNowS() >= chaos_end;
+  }, 60.0);
 
   // No more goals: the mission must end holding a pose that names the true place.
   const auto settled = [&] {
     const bool holding = !status_.empty() && (status_.back().state == msgs::MISSION_LOCALIZED ||
                                               status_.back().state == msgs::MISSION_GOAL_REACHED);
+    NoteRestarts(kills, launch.pid());
     return holding && pose_ && pose_->status() == msgs::LOCALIZATION_LOCALIZED;
   };
   ASSERT_TRUE(SpinUntil(settled, 180.0)) << Outputs();
@@ -260,14 +280,19 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
     }
     // The base comes to rest, and stays at rest until the process is back: the last motion
     // change before `back` is a stop, less than kMaxStopS after the kill. Stops and starts
-    // before it are locomotion's own (a bend, a reversal) while the death is noticed.
+    // before it are locomotion's own (a bend, a reversal) while the death is noticed. A new
+    // executive is back when it runs: this test hears its first state only once it has
+    // discovered the new process, which on a loaded machine can be after it has set off.
+    const double until = k.victim == "executive" && k.restarted_s > 0.0 && back > 0.0
+                             ? std::min(back, k.restarted_s)
+                             : back;
     double rest = k.at_s;  // already at rest at the kill, and no change since
     for (const auto& e : events) {
-      if (back > 0.0 && e.at_s > k.at_s && e.at_s < back) rest = e.moving ? -1.0 : e.at_s;
+      if (until > 0.0 && e.at_s > k.at_s && e.at_s < until) rest = e.moving ? -1.0 : e.at_s;
     }
-    if (back > 0.0) {
+    if (until > 0.0) {
       ASSERT_GT(rest, 0.0) << "the base was moving when " << k.victim << " came back ("
-                           << k.at_s << " to " << back << ")";
+                           << k.at_s << " to " << until << ")";
       ASSERT_FALSE(rest == k.at_s && MovingAt(events, k.at_s))
           << "the base never stopped while " << k.victim << " was absent";
     }
@@ -276,11 +301,13 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
       stop_times.push_back(rest - k.at_s);
       EXPECT_LT(rest - k.at_s, kMaxStopS) << k.victim << " killed";
     }
-    std::printf("[chaos] %-9s killed: %s, back (mission resumed in %s) %.1f s after the kill\n",
+    std::printf("[chaos] %-9s killed: %s, restarted %.1f s and back (mission resumed in %s) "
+                "%.1f s after the kill\n",
                 k.victim.c_str(),
                 rest > k.at_s ? ("base at rest " + std::to_string(rest - k.at_s).substr(0, 5) +
                                  " s after it").c_str()
                               : "base already at rest",
+                k.restarted_s > 0.0 ? k.restarted_s - k.at_s : -1.0,
                 resumed ? StateName(resumed->state) : "-", back - k.at_s);
   }
   const auto count = [&out](const char* pattern) {
