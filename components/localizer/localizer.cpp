@@ -248,9 +248,7 @@ bool Localizer::Recover(double odometer_in, const std::vector<map::SensedEdge>& 
   if (edges.empty()) {
     if (estimate_.hypotheses.empty()) return false;
     // The silence since the last edge may confirm the best place (confirm_silent_in).
-    const Status before = estimate_.status;
-    const bool declared = bayes_ && before != Status::kLocalized &&
-                          bayes_->status() == recovery::RecoveryStatus::kLocalized;
+    const bool declared = bayes_ && bayes_->status() == recovery::RecoveryStatus::kLocalized;
     Rebuild(odometer_in, declared ? fmt::format("best place has posterior {:.4f} with {:.0f} in "
                                                 "sensed past the last edge: pose recovered",
                                                 bayes_->best().probability, bayes_->silent_in())

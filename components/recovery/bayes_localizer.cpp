@@ -604,10 +604,13 @@ void BayesLocalizer::UpdateStatus() {
   const bool confirmed = silent_in_ >= model_.settings.confirm_silent_in ||
                          above_ > model_.settings.confirm_edges + 1;
   // Silence only weighs the place the edges put first: it never declares another one.
-  const bool same = best_.edge == edge_best_.edge && best_.dir == edge_best_.dir;
-  const bool held = above_ > model_.settings.confirm_edges && same &&
+  const bool held = above_ > model_.settings.confirm_edges && BestIsEdgeBest() &&
                     best_.probability >= model_.settings.threshold && confirmed;
   status_ = held ? RecoveryStatus::kLocalized : RecoveryStatus::kAmbiguous;
+}
+
+bool BayesLocalizer::BestIsEdgeBest() const {
+  return best_.edge == edge_best_.edge && best_.dir == edge_best_.dir;
 }
 
 void BayesLocalizer::SetSilence(double silent_in) {
@@ -626,8 +629,7 @@ void BayesLocalizer::SetSilence(double silent_in) {
     if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
   }
   // Silence can withdraw the place the edges put first, never confirm another (UpdateStatus).
-  const bool same = best_.edge == edge_best_.edge && best_.dir == edge_best_.dir;
-  if (!same || best_.probability < model_.settings.threshold) above_ = 0;
+  if (!BestIsEdgeBest() || best_.probability < model_.settings.threshold) above_ = 0;
   UpdateStatus();
 }
 

@@ -145,6 +145,8 @@ class BayesLocalizer {
   // silent_in past g's far end (SetSilence).
   double SilenceWeight(int g, int dir, double silent_in) const;
   void UpdateStatus();
+  // The best place is the one the last edge put first (the silence has not moved it).
+  bool BestIsEdgeBest() const;
   // Reverse() of the mass at (the last sensed edge before `first`, dir), travelled_in into
   // `first` and beyond: into nn_.
   void ReverseAfter(int first, int dir, double mass, double travelled_in);
