@@ -50,6 +50,32 @@ Prototype DefaultPrototype(EdgeType type) {
   }
 }
 
+const char* DoorMarkName(DoorMark mark) {
+  switch (mark) {
+    case DoorMark::kUnknown: return "unknown";
+    case DoorMark::kPlain: return "plain";
+    case DoorMark::kWindow: return "window";
+    case DoorMark::kPoster: return "poster";
+  }
+  return "unknown";
+}
+
+std::optional<DoorMark> ParseDoorMark(std::string_view name) {
+  for (int k = 0; k < kDoorMarkCount; ++k) {
+    const auto mark = static_cast<DoorMark>(k);
+    if (name == DoorMarkName(mark)) return mark;
+  }
+  return std::nullopt;
+}
+
+DoorMark DoorMarkOfPattern(std::string_view pattern) {
+  if (pattern.find("poster") != std::string_view::npos) return DoorMark::kPoster;
+  if (pattern.find("window") != std::string_view::npos && pattern.rfind("no_", 0) != 0) {
+    return DoorMark::kWindow;
+  }
+  return DoorMark::kPlain;
+}
+
 const char* DoorClassName(DoorClass door_class) {
   return kDoorClassNames[static_cast<int>(door_class)];
 }

@@ -59,6 +59,18 @@ std::optional<DoorClass> NearestDoorClass(double width_in);
 // The class of one leaf of a door: 30/30 -> 30, 36/36 -> 36, singles -> themselves.
 DoorClass LeafClass(DoorClass door_class);
 
+// What the camera can tell of a door's leaf: the supplemental marks of Table 6.8 reduced
+// to what a frame shows (a glazed vision panel, a poster, or a plain leaf). kUnknown: the
+// leaf was not read (nothing in view, too little contrast).
+enum class DoorMark : std::uint8_t { kUnknown, kPlain, kWindow, kPoster };
+inline constexpr int kDoorMarkCount = 4;
+// "unknown", "plain", "window", "poster".
+const char* DoorMarkName(DoorMark mark);
+std::optional<DoorMark> ParseDoorMark(std::string_view name);
+// The mark a map `pattern` puts on a door: a pattern naming a poster is a poster, one naming
+// a window (but not "no_window") a window, any other (or none) a plain leaf.
+DoorMark DoorMarkOfPattern(std::string_view pattern);
+
 // One attributed edge (§6.1). Doors carry their class and a metric: the class width (map
 // format 1) or the measured width of the opening (format 2), within kDoorClassToleranceIn
 // of the class width.

@@ -43,6 +43,8 @@ MatchIndex::MatchIndex(const Map& map) {
       const int g = static_cast<int>(code_.size());
       code_.push_back(CodeOf(e));
       metric_.push_back(e.metric_in);
+      mark_.push_back(static_cast<std::uint8_t>(
+          IsDoorCode(code_.back()) ? DoorMarkOfPattern(e.pattern) : DoorMark::kUnknown));
       angle_start_.push_back(ring.nodes[i].angle_deg);
       angle_end_.push_back(ring.nodes[(i + 1) % ring.NodeCount()].angle_deg);
       open_end_.push_back(IsOpenEnd(e, angle_start_.back(), angle_end_.back()) ? 1 : 0);
@@ -105,6 +107,7 @@ std::vector<SensedEdge> ExactSequence(const MatchIndex& index, int start, int di
 std::string Describe(const SensedEdge& e) {
   std::string s = SymbolName(e.code);
   if (CodeHasMetric(e.code)) s += ":" + std::to_string(static_cast<long>(std::lround(e.metric_in)));
+  if (e.mark != DoorMark::kUnknown) s += std::string("[") + DoorMarkName(e.mark) + "]";
   if (std::isfinite(e.angle_deg) && std::abs(e.angle_deg - 180.0) > 1.0) {
     s = "<" + std::to_string(static_cast<long>(std::lround(e.angle_deg))) + "> " + s;
   }

@@ -44,9 +44,13 @@ struct SensedEdge {
   double angle_deg = std::numeric_limits<double>::quiet_NaN();
   // The robot started inside this edge and saw only part of it: the metric is a lower bound.
   bool metric_is_lower_bound = false;
+  // Doors: the leaf's mark as the camera read it (Table 6.8's supplemental marks); kUnknown
+  // when not read, and always for walls and corners.
+  DoorMark mark = DoorMark::kUnknown;
 };
 
-// One sensed edge in words, for logs and traces: "door36", "wall:46", "<270> wall:130".
+// One sensed edge in words, for logs and traces: "door36", "wall:46", "<270> wall:130",
+// "door36[poster]" (a door whose mark was read).
 std::string Describe(const SensedEdge& edge);
 // A sequence of them, space-separated.
 std::string Describe(const std::vector<SensedEdge>& edges);
@@ -75,6 +79,8 @@ class MatchIndex {
   int MaxRingSize() const { return max_ring_size_; }
 
   SymbolCode code(int g) const { return code_[g]; }
+  // The mark on door g's leaf (DoorMarkOfPattern of its pattern); kUnknown for non-doors.
+  DoorMark mark(int g) const { return static_cast<DoorMark>(mark_[g]); }
   double metric(int g) const { return metric_[g]; }
   // Angle of the node at the start / end of edge g in ring order.
   double angle_start(int g) const { return angle_start_[g]; }
@@ -104,6 +110,7 @@ class MatchIndex {
  private:
   std::vector<SymbolCode> code_;
   std::vector<double> metric_;
+  std::vector<std::uint8_t> mark_;
   std::vector<double> angle_start_;
   std::vector<double> angle_end_;
   std::vector<std::uint8_t> open_end_;

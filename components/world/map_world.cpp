@@ -212,11 +212,11 @@ std::vector<int> RunEdges(const map::Ring& ring, const WallRun& run) {
 }
 
 DoorPattern DoorPatternOf(const std::string& pattern) {
-  if (pattern.find("poster") != std::string::npos) return DoorPattern::kPoster;
-  if (pattern.find("window") != std::string::npos && pattern.rfind("no_", 0) != 0) {
-    return DoorPattern::kWindow;
+  switch (map::DoorMarkOfPattern(pattern)) {
+    case map::DoorMark::kPoster: return DoorPattern::kPoster;
+    case map::DoorMark::kWindow: return DoorPattern::kWindow;
+    default: return DoorPattern::kNone;
   }
-  return DoorPattern::kNone;
 }
 
 void CheckOptions(const MapWorldOptions& o) {
