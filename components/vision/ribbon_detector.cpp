@@ -640,31 +640,43 @@ DetectResult RibbonDetector::Detect(const cv::Mat& image, double coaxial_range_i
   return Run(image.data, image.cols, image.rows, image.step[0], coaxial_range_in, limits);
 }
 
-DetectResult RibbonDetector::Detect(const ImageView& image, double coaxial_range_in,
-                                    const PairWidthLimits& limits) const {
+DetectStatus CheckFrame(const ImageView& image, std::string* why) {
+  const auto fail = [&](DetectStatus status, std::string message) {
+    if (why) *why = std::move(message);
+    return status;
+  };
   if (image.width_px <= 0 || image.height_px <= 0 || image.data == nullptr ||
       image.size_bytes == 0) {
-    return Error(DetectStatus::kEmptyFrame, "empty frame (" + std::to_string(image.width_px) +
-                                                " x " + std::to_string(image.height_px) + " px, " +
-                                                std::to_string(image.size_bytes) + " bytes)");
+    return fail(DetectStatus::kEmptyFrame, "empty frame (" + std::to_string(image.width_px) +
+                                               " x " + std::to_string(image.height_px) + " px, " +
+                                               std::to_string(image.size_bytes) + " bytes)");
   }
   if (image.encoding != "mono8") {
-    return Error(DetectStatus::kUnknownEncoding, "encoding '" + image.encoding + "' is not mono8");
+    return fail(DetectStatus::kUnknownEncoding, "encoding '" + image.encoding + "' is not mono8");
   }
   if (image.width_px > kMaxSidePx || image.height_px > kMaxSidePx ||
       image.step_bytes < image.width_px) {
-    return Error(DetectStatus::kSizeMismatch,
-                 "step " + std::to_string(image.step_bytes) + " bytes is below width " +
-                     std::to_string(image.width_px) + " px or the frame exceeds " +
-                     std::to_string(kMaxSidePx) + " px");
+    return fail(DetectStatus::kSizeMismatch,
+                "step " + std::to_string(image.step_bytes) + " bytes is below width " +
+                    std::to_string(image.width_px) + " px or the frame exceeds " +
+                    std::to_string(kMaxSidePx) + " px");
   }
   const std::size_t expected =
       static_cast<std::size_t>(image.step_bytes) * static_cast<std::size_t>(image.height_px);
   if (image.size_bytes != expected) {
-    return Error(DetectStatus::kSizeMismatch,
-                 "data length " + std::to_string(image.size_bytes) + " bytes does not match " +
-                     std::to_string(image.height_px) + " rows x step " +
-                     std::to_string(image.step_bytes) + " = " + std::to_string(expected));
+    return fail(DetectStatus::kSizeMismatch,
+                "data length " + std::to_string(image.size_bytes) + " bytes does not match " +
+                    std::to_string(image.height_px) + " rows x step " +
+                    std::to_string(image.step_bytes) + " = " + std::to_string(expected));
+  }
+  return DetectStatus::kOk;
+}
+
+DetectResult RibbonDetector::Detect(const ImageView& image, double coaxial_range_in,
+                                    const PairWidthLimits& limits) const {
+  std::string why;
+  if (const DetectStatus status = CheckFrame(image, &why); status != DetectStatus::kOk) {
+    return Error(status, why);
   }
   return Run(image.data, image.width_px, image.height_px,
              static_cast<std::size_t>(image.step_bytes), coaxial_range_in, limits);

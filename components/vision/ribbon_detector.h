@@ -192,6 +192,9 @@ enum class DetectStatus {
 };
 
 const char* ToString(DetectStatus status);
+// Whether a frame's fields are consistent (mono8, sizes, step, data length): kOk, or why
+// not in `why` (if given). Detect() and every other reader of an ImageView check with it.
+DetectStatus CheckFrame(const ImageView& image, std::string* why);
 
 // Result of one detection: a status and, when ok, the detection. Bad input never throws.
 struct DetectResult {
