@@ -46,6 +46,18 @@ TEST(ConvertTest, LandmarkClassesMapOneToOneAndRejectedIsRefused) {
   m.door_class(msgs::DOOR_36);
   m.width_in(-1.0);
   EXPECT_EQ(FromIdl(m).reason, "non-finite or non-positive width or position");
+  m.width_in(36.0);
+  m.mark(static_cast<msgs::DoorMark>(7));  // an outside writer's value beyond the enum
+  EXPECT_EQ(FromIdl(m).reason, "not a door mark");
+  for (const map::DoorMark mark : {map::DoorMark::kUnknown, map::DoorMark::kPlain,
+                                   map::DoorMark::kWindow, map::DoorMark::kPoster}) {
+    message::LandmarkObservation o;
+    o.width_in = 36.0;
+    o.mark = mark;
+    const auto back = FromIdl(ToIdl(o));
+    ASSERT_TRUE(back.value) << back.reason;
+    EXPECT_EQ(back.value->mark, mark);
+  }
 }
 
 TEST(ConvertTest, OdometryAndWheelsRefuseNonFiniteValues) {

@@ -10,6 +10,8 @@ namespace stickrep::convert {
 static_assert(static_cast<int>(msgs::DOOR_30) == 1 + static_cast<int>(sensing::DoorClass::k30));
 static_assert(static_cast<int>(msgs::DOOR_36_36) ==
               1 + static_cast<int>(sensing::DoorClass::k36_36));
+static_assert(static_cast<int>(msgs::MARK_POSTER) == static_cast<int>(map::DoorMark::kPoster) &&
+              static_cast<int>(msgs::MARK_UNKNOWN) == static_cast<int>(map::DoorMark::kUnknown));
 
 Checked<message::LandmarkObservation> FromIdl(const msgs::LandmarkObservation& m) {
   const long long code = static_cast<long long>(m.door_class());
@@ -21,6 +23,11 @@ Checked<message::LandmarkObservation> FromIdl(const msgs::LandmarkObservation& m
       !std::isfinite(m.odometry_distance_in()) || !std::isfinite(m.center_offset_in())) {
     return Checked<message::LandmarkObservation>::Refused(
         "non-finite or non-positive width or position");
+  }
+  const long long mark = static_cast<long long>(m.mark());
+  if (mark < static_cast<long long>(msgs::MARK_UNKNOWN) ||
+      mark > static_cast<long long>(msgs::MARK_POSTER)) {
+    return Checked<message::LandmarkObservation>::Refused("not a door mark");
   }
   message::LandmarkObservation s;
   s.header = FromIdl(m.header());
@@ -35,6 +42,7 @@ Checked<message::LandmarkObservation> FromIdl(const msgs::LandmarkObservation& m
   s.in_envelope = m.in_envelope();
   s.odometry_distance_in = m.odometry_distance_in();
   s.image_stamp_ns = m.image_stamp_ns();
+  s.mark = static_cast<map::DoorMark>(mark);
   return Checked<message::LandmarkObservation>::Ok(s);
 }
 
@@ -52,6 +60,7 @@ msgs::LandmarkObservation ToIdl(const message::LandmarkObservation& s) {
   m.in_envelope(s.in_envelope);
   m.odometry_distance_in(s.odometry_distance_in);
   m.image_stamp_ns(s.image_stamp_ns);
+  m.mark(static_cast<msgs::DoorMark>(s.mark));
   return m;
 }
 

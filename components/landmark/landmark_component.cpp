@@ -120,6 +120,7 @@ void LandmarkComponent::Process(const message::Image& m) {
   msg.in_envelope = o.in_envelope;
   msg.odometry_distance_in = *odometer_in;
   msg.image_stamp_ns = m.header.stamp_ns;
+  msg.mark = out.mark.mark;
   if (observations_.Publish(msg)) doors_++;
 }
 

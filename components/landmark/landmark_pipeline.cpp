@@ -123,6 +123,8 @@ LandmarkPipeline::LandmarkPipeline(const sensing::RobotConfig& robot,
       estimator_(robot, std::move(estimator)),
       casing_(casing),
       gate_(gate) {
+  marks_.camera_height_in = detector.camera_height_in;
+  marks_.focal_px = detector.focal_px;
   min_class_in_ = 1e9;
   for (const sensing::ClassBoundary& b : sensing::DefaultBoundaries()) {
     min_class_in_ = std::min(min_class_in_, b.low_in);
@@ -194,6 +196,8 @@ FrameOutcome LandmarkPipeline::Process(const vision::ImageView& frame,
   const double centre_px = 0.5 * (estimate->footprints.lj_px + estimate->footprints.rj_px);
   out.center_offset_in =
       estimate->range_in * std::tan(estimator_.camera().AngleOfColumn(centre_px));
+  out.mark = vision::ReadDoorMark(frame, estimate->footprints.lj_px, estimate->footprints.rj_px,
+                                  estimate->range_in, marks_);
   return out;
 }
 

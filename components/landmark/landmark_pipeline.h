@@ -5,6 +5,7 @@
 
 #include "sensing/landmark_estimator.h"
 #include "sensing/robot_config.h"
+#include "vision/door_mark_reader.h"
 #include "vision/ribbon_detector.h"
 
 namespace stickrep::landmark {
@@ -21,6 +22,7 @@ struct FrameOutcome {
   std::string reason;  // why, for everything but kObservation
   sensing::LandmarkObservation observation;
   double center_offset_in = 0.0;  // ribbon centre along the wall from the optical axis
+  vision::DoorMarkReading mark;   // the classified door's leaf mark (Table 6.8)
   int candidates = 0;             // candidate jamb pairs the detector offered
   int casings = 0;                // of those, recognised as a casing round an inner pair
   // The candidates handed to the classifier (after the width gate and the casing rule), in
@@ -87,7 +89,8 @@ struct CasingRule {
 // The landmark pipeline of §4.1 and Chapter 5 for one frame: the vertical edge ribbon
 // detector (Figure 4.1) on rows chosen from the coaxial sonar range, the casing rule over
 // its candidate pairs, then the sensing geometry (Short Side by default) and the Bayes door
-// classes of Table 4.1 over the candidate pairs in order of confidence.
+// classes of Table 4.1 over the candidate pairs in order of confidence; last, the classified
+// door's leaf mark (Table 6.8: a vision panel, a poster or a plain leaf).
 class LandmarkPipeline {
  public:
   LandmarkPipeline(const sensing::RobotConfig& robot, vision::RibbonDetectorParams detector,
@@ -101,6 +104,7 @@ class LandmarkPipeline {
  private:
   sensing::RobotConfig robot_;
   vision::RibbonDetector detector_;
+  vision::DoorMarkParams marks_;  // the camera's height and focal length from the detector
   sensing::LandmarkEstimator estimator_;
   // The gate's limits for this scan: the Short Side stare from the nearest valid sensor.
   vision::PairWidthLimits GateLimits(const sensing::SonarScan& scan) const;

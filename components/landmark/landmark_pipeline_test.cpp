@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/units.h"
@@ -100,6 +101,30 @@ TEST(LandmarkPipelineTest, Classifies36InDoorAtSixFeetBy36NotByItsCasing) {
   const FrameOutcome out = Process(frame);
   ExpectJambsClassified(frame, out, DoorClass::k36);
   EXPECT_EQ(out.casings, 1);
+}
+
+TEST(LandmarkPipelineTest, ReadsTheLeafMarkBetweenTheJambsItFound) {
+  // Table 6.8's marks on a closed 36 in leaf, from the jambs the detector found at 6 and 8 ft.
+  const std::pair<world::DoorPattern, map::DoorMark> cases[] = {
+      {world::DoorPattern::kNone, map::DoorMark::kPlain},
+      {world::DoorPattern::kWindow, map::DoorMark::kWindow},
+      {world::DoorPattern::kPoster, map::DoorMark::kPoster}};
+  for (const auto& [pattern, mark] : cases) {
+    HallwayFeature door = HallwayFeature::Door(36);
+    door.pattern = pattern;
+    world::HallwayOptions options;
+    options.width_in = kHallwayWidthIn;
+    const world::Scene scene(world::MakeStraightHallway(
+        {HallwayFeature::Wall(kDoorStartIn), door, HallwayFeature::Wall(240)}, options));
+    for (const double range_in : {72.0, 96.0}) {
+      const Frame frame = Render(scene, Facing(36, range_in, 2.0));
+      const FrameOutcome out = Process(frame);
+      ExpectJambsClassified(frame, out, DoorClass::k36);
+      EXPECT_EQ(out.mark.mark, mark) << map::DoorMarkName(out.mark.mark) << " at " << range_in
+                                     << " in, share " << out.mark.mark_share << ", "
+                                     << out.mark.why_unknown;
+    }
+  }
 }
 
 TEST(LandmarkPipelineTest, Classifies30InDoorAtEightFeetBy30WhereItsCasingReads36) {

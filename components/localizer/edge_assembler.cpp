@@ -19,6 +19,7 @@ void EdgeAssembler::AddSighting(const DoorSighting& s) {
       t.frames++;
       t.support += weight;
       t.class_weight[static_cast<int>(s.door_class)] += weight;
+      t.mark_weight[static_cast<int>(s.mark)] += weight;
       return;
     }
   }
@@ -28,6 +29,7 @@ void EdgeAssembler::AddSighting(const DoorSighting& s) {
   t.frames = 1;
   t.support = weight;
   t.class_weight[static_cast<int>(s.door_class)] = weight;
+  t.mark_weight[static_cast<int>(s.mark)] = weight;
   open_.push_back(std::move(t));
 }
 
@@ -220,6 +222,8 @@ bool EdgeAssembler::Decide(Track& t) {
     if (const auto cls = DoubleDoorClass(direction_ * (Far(n) - Near(t)))) {
       n.double_class = cls;
       n.double_near_jamb_in = Near(t);
+      // Both leaves carry the door's mark: their reads are one vote.
+      for (int m = 0; m < map::kDoorMarkCount; ++m) n.mark_weight[m] += t.mark_weight[m];
       return false;
     }
   }
@@ -237,12 +241,20 @@ map::DoorClass EdgeAssembler::Track::VotedClass() const {
       std::max_element(std::begin(class_weight), std::end(class_weight)) - std::begin(class_weight));
 }
 
+map::DoorMark EdgeAssembler::Track::VotedMark() const {
+  int best = static_cast<int>(map::DoorMark::kUnknown);
+  for (int m = best + 1; m < map::kDoorMarkCount; ++m) {
+    if (mark_weight[m] > 0.0 && (best == 0 || mark_weight[m] > mark_weight[best])) best = m;
+  }
+  return static_cast<map::DoorMark>(best);
+}
+
 void EdgeAssembler::Emit(const Track& t, std::vector<map::SensedEdge>& out) {
   if (t.double_class) {
-    EmitEdges(t.double_near_jamb_in, Far(t), *t.double_class, out);
+    EmitEdges(t.double_near_jamb_in, Far(t), *t.double_class, t.VotedMark(), out);
     return;
   }
-  EmitEdges(Near(t), Far(t), t.VotedClass(), out);
+  EmitEdges(Near(t), Far(t), t.VotedClass(), t.VotedMark(), out);
 }
 
 void EdgeAssembler::EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& out) {
@@ -263,12 +275,13 @@ void EdgeAssembler::EmitWallUpTo(double end_in, std::vector<map::SensedEdge>& ou
 }
 
 void EdgeAssembler::EmitEdges(double near_jamb_in, double far_jamb_in, map::DoorClass door_class,
-                              std::vector<map::SensedEdge>& out) {
+                              map::DoorMark mark, std::vector<map::SensedEdge>& out) {
   EmitWallUpTo(near_jamb_in, out);
   map::SensedEdge door;
   door.angle_deg = pending_angle_deg_;
   pending_angle_deg_ = std::numeric_limits<double>::quiet_NaN();
   door.code = map::DoorCode(door_class);
+  door.mark = mark;
   door.metric_in = direction_ * (far_jamb_in - near_jamb_in);
   out.push_back(door);
   sequence_.push_back(door);

@@ -19,6 +19,9 @@ struct DoorSighting {
   // Along-wall position of the door centre: the odometer reading at the frame plus the
   // centre's offset from the optical axis.
   double along_in = 0.0;
+  // The leaf's mark as the frame showed it (Table 6.8's supplemental marks); kUnknown: not
+  // read.
+  map::DoorMark mark = map::DoorMark::kUnknown;
 };
 
 struct EdgeAssemblerConfig {
@@ -80,7 +83,7 @@ struct EdgeAssemblerConfig {
 
 // Assembles per-frame door sightings and the odometer into the sensed sequence of StickRep
 // edges (§6.3, Figure 6.2 steps 3-4): a door edge per tracked door (class by
-// confidence-weighted vote, width by median), and between consecutive doors a wall edge
+// confidence-weighted vote, width by median, the leaf's mark by vote), and between consecutive doors a wall edge
 // whose length is the odometry distance between their facing jambs. The wall the robot
 // started in is only partly seen: its length is a lower bound.
 //
@@ -143,6 +146,7 @@ class EdgeAssembler {
     int frames = 0;
     double support = 0.0;
     double class_weight[map::kDoorClassCount] = {};
+    double mark_weight[map::kDoorMarkCount] = {};  // confidence-weighted reads, by mark
     // Set when this track is the second leaf of a double door: the double door's class
     // and the first leaf's near jamb, where the double door begins.
     std::optional<map::DoorClass> double_class;
@@ -152,6 +156,8 @@ class EdgeAssembler {
     double along() const { return 0.5 * (lo() + hi()); }
     double width() const { return hi() - lo(); }
     map::DoorClass VotedClass() const;
+    // The mark most read, unknown reads left out; kUnknown when every read was.
+    map::DoorMark VotedMark() const;
   };
   double Near(const Track& t) const { return direction_ >= 0 ? t.lo() : t.hi(); }
   double Far(const Track& t) const { return direction_ >= 0 ? t.hi() : t.lo(); }
@@ -161,7 +167,7 @@ class EdgeAssembler {
   std::optional<map::DoorClass> DoubleDoorClass(double span_in) const;
   void Emit(const Track& t, std::vector<map::SensedEdge>& out);
   void EmitEdges(double near_jamb_in, double far_jamb_in, map::DoorClass door_class,
-                 std::vector<map::SensedEdge>& out);
+                 map::DoorMark mark, std::vector<map::SensedEdge>& out);
 
   EdgeAssemblerConfig config_;
   std::vector<Track> open_;

@@ -47,9 +47,13 @@ std::vector<component::Timer> LocalizerComponent::Timers() {
   return {{1.0 / publish_rate_hz_, [this] { PublishPose(); }}};
 }
 
+DoorSighting LocalizerComponent::Sighting(const message::LandmarkObservation& o) {
+  return {o.door_class, o.width_in, o.confidence, o.odometry_distance_in + o.center_offset_in,
+          o.mark};
+}
+
 void LocalizerComponent::OnLandmark(const message::LandmarkObservation& o) {
-  localizer_->AddSighting({o.door_class, o.width_in, o.confidence,
-                           o.odometry_distance_in + o.center_offset_in});
+  localizer_->AddSighting(Sighting(o));
   landmarks_used_++;
 }
 

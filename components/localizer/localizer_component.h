@@ -26,6 +26,9 @@ class LocalizerComponent : public component::Component {
                      const sensing::RobotConfig& robot, Outputs out);
 
   void OnLandmark(const message::LandmarkObservation& o);
+  // A classified door as the edge assembler takes it: placed along the wall at the
+  // odometer reading of its frame plus its centre's offset from the optical axis.
+  static DoorSighting Sighting(const message::LandmarkObservation& o);
   // The coaxial sensor looks along the optical axis at the camera's wall: its range is how
   // far the wall is, which places the walls at a corner (EdgeAssembler::PlaceCorner).
   void OnSonar(const message::SonarScan& scan);

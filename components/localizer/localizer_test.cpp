@@ -159,13 +159,16 @@ struct Sighted {
   double centre, width;
   map::DoorClass cls;
   double confidence = 0.8;
+  map::DoorMark mark = map::DoorMark::kUnknown;
 };
 std::vector<map::SensedEdge> Drive(EdgeAssembler& a, const std::vector<Sighted>& seen,
                                    double to_in = 300.0) {
   std::vector<map::SensedEdge> edges;
   for (double odo = 0.0; odo <= to_in; odo += 6.0) {
     for (const Sighted& s : seen) {
-      if (std::abs(s.centre - odo) < 12.0) a.AddSighting({s.cls, s.width, s.confidence, s.centre});
+      if (std::abs(s.centre - odo) < 12.0) {
+        a.AddSighting({s.cls, s.width, s.confidence, s.centre, s.mark});
+      }
     }
     for (const auto& e : a.Advance(odo)) edges.push_back(e);
   }
@@ -181,6 +184,41 @@ TEST(EdgeAssemblerTest, TwoLeavesSharingTheStileBecomeOneDoubleDoorBySpan) {
   ASSERT_EQ(edges.size(), 2u);
   EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36_36));
   EXPECT_THAT(edges[1].metric_in, DoubleNear(70.0, 1e-9));
+}
+
+TEST(EdgeAssemblerTest, TheLeafMarkIsTheMostReadOneWithUnreadFramesLeftOut) {
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  // A 36 in door centred at 100, seen in five frames: unread twice (the most of any one
+  // answer), a poster twice, a window once.
+  const map::DoorMark reads[] = {map::DoorMark::kUnknown, map::DoorMark::kPoster,
+                                 map::DoorMark::kUnknown, map::DoorMark::kWindow,
+                                 map::DoorMark::kPoster};
+  int frame = 0;
+  for (double odo = 0.0; odo <= 200.0; odo += 6.0) {
+    if (std::abs(odo - 100.0) < 15.0 && frame < 5) {
+      a.AddSighting({map::DoorClass::k36, 36.0, 0.8, 100.0, reads[frame++]});
+    }
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  ASSERT_EQ(frame, 5);
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_EQ(edges[1].mark, map::DoorMark::kPoster);
+  EXPECT_EQ(edges[0].mark, map::DoorMark::kUnknown);  // the wall before it
+  EXPECT_EQ(map::Describe(edges[1]), "door36[poster]");
+}
+
+TEST(EdgeAssemblerTest, ADoubleDoorsMarkIsVotedOverBothLeavesAndUnreadStaysUnknown) {
+  EdgeAssembler a;
+  const auto edges = Drive(a, {{117.5, 35.0, map::DoorClass::k36, 0.8, map::DoorMark::kWindow},
+                               {153.0, 34.0, map::DoorClass::k36, 0.8, map::DoorMark::kUnknown}});
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36_36));
+  EXPECT_EQ(edges[1].mark, map::DoorMark::kWindow);
+  EdgeAssembler unread;
+  const auto plain = Drive(unread, {{118.0, 36.0, map::DoorClass::k36}});
+  ASSERT_EQ(plain.size(), 2u);
+  EXPECT_EQ(plain[1].mark, map::DoorMark::kUnknown);
 }
 
 TEST(EdgeAssemblerTest, LeavesSpanningSixtyInchesAreA30By30) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sensing/door_classifier.h"
+#include "stickrep/map.h"
 #include "sonar/sonar_gate.h"
 
 namespace stickrep::message {
@@ -111,6 +112,7 @@ struct LandmarkObservation {
   bool in_envelope = false;
   double odometry_distance_in = 0.0;
   int64_t image_stamp_ns = 0;
+  map::DoorMark mark = map::DoorMark::kUnknown;  // the leaf's mark (Table 6.8)
 };
 
 // --- localization (localization.idl) ---
