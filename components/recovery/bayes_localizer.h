@@ -108,6 +108,9 @@ class BayesLocalizer {
   // The probability that map door `door` is missed (its class's rate).
   double Missed(int door) const;
   void First(const map::SensedEdge& e);
+  // Weighs the belief after a sensed door by how its leaf's mark was read at each map edge
+  // (Confusion::MarkLikelihood); nothing when the model has no marks.
+  void WeighMark(const map::SensedEdge& e);
   // Adds `weight` times the belief a first sensed edge `e` gives (a start anywhere).
   void AddPrior(const map::SensedEdge& e, double weight);
   // AddPrior()'s share for a partial wall `e` seen in wall g that began earlier, behind g

@@ -497,5 +497,58 @@ TEST_F(BayesLocalizerTest, ResetForgetsTheBelief) {
   EXPECT_EQ(b.edges(), 0);
 }
 
+// The corridor with a poster on door 1 and a vision panel on door 3: both are 36 in doors
+// followed by a 60 in wall, so class and wall length cannot tell them apart.
+class BayesLocalizerMarkTest : public ::testing::Test {
+ protected:
+  static map::Map MarkedCorridor() {
+    const map::Map plain = testing::CorridorMap();
+    map::Ring ring = plain.ring(0);
+    ring.edges[1].pattern = "poster";
+    ring.edges[3].pattern = "old_window";
+    return map::Map(plain.info(), {ring});
+  }
+  static ErrorModel WithMarks() {
+    ErrorModel em = ErrorModel::Paper();
+    em.mark_read[map::DoorMark::kPlain] = {0.2, 0.7, 0.08, 0.02};
+    em.mark_read[map::DoorMark::kWindow] = {0.2, 0.1, 0.6, 0.1};
+    em.mark_read[map::DoorMark::kPoster] = {0.2, 0.05, 0.1, 0.65};
+    em.false_door_marks = ErrorModel::MarkRow{0.3, 0.6, 0.08, 0.02};
+    return em;
+  }
+  // The belief in door 1's place over door 3's after "door36 wall:60", the door read `mark`.
+  double Ratio(const ErrorModel& em, map::DoorMark mark) const {
+    BayesLocalizer b = MakeLocalizer(index_, em);
+    map::SensedEdge door = Door(DoorClass::k36);
+    door.mark = mark;
+    b.Add(door);
+    b.Add(Wall(60));
+    return b.PoseProbability(2, +1) / b.PoseProbability(4, +1);
+  }
+  map::Map map_ = MarkedCorridor();
+  map::MatchIndex index_{map_};
+};
+
+TEST_F(BayesLocalizerMarkTest, APosterReadTellsApartDoorsTheClassCannot) {
+  EXPECT_NEAR(Ratio(ErrorModel::Paper(), map::DoorMark::kPoster), 1.0, 1e-6);  // marks unused
+  // P(poster | poster) / P(poster | window) = 0.65 / 0.1.
+  EXPECT_NEAR(Ratio(WithMarks(), map::DoorMark::kPoster), 6.5, 0.05);
+  EXPECT_NEAR(Ratio(WithMarks(), map::DoorMark::kWindow), 0.1 / 0.6, 0.005);
+  // Unread: both marks leave a door unread as often, so it says nothing.
+  EXPECT_NEAR(Ratio(WithMarks(), map::DoorMark::kUnknown), 1.0, 0.01);
+}
+
+TEST_F(BayesLocalizerMarkTest, TheMarksKeepThePosteriorNormalised) {
+  BayesLocalizer b = MakeLocalizer(index_, WithMarks());
+  map::SensedEdge door = Door(DoorClass::k36);
+  door.mark = map::DoorMark::kWindow;
+  for (const map::SensedEdge& e : {Wall(100, kNaN, true), door, Wall(60), door, Wall(200)}) {
+    b.Add(e);
+    double sum = 0.0;
+    for (const PoseBelief& p : b.Top(1000)) sum += p.probability;
+    EXPECT_NEAR(sum, 1.0, 1e-6);
+  }
+}
+
 }  // namespace
 }  // namespace stickrep::recovery

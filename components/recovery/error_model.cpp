@@ -15,6 +15,8 @@ namespace {
 using map::DoorClass;
 
 constexpr double kSumTolerance = 1e-3;
+// The floor of a mark's read share: a read the measurement never saw is rare, not impossible.
+constexpr double kMinMarkShare = 0.005;
 
 std::string Num(double v) {
   std::ostringstream out;
@@ -141,6 +143,58 @@ static void ReadLeafShares(const StrictYaml& node, ErrorModel* m) {
   }
 }
 
+// One row of `marks:`: {unknown: p, plain: p, window: p, poster: p}, missing keys 0, sum 1.
+static ErrorModel::MarkRow ReadMarkRow(const StrictYaml& row) {
+  if (!row.IsMap()) row.Fail("", "expected a mapping of read mark to probability");
+  ErrorModel::MarkRow out{};
+  double sum = 0.0;
+  for (const std::string& key : row.Keys()) {
+    const auto mark = map::ParseDoorMark(key);
+    if (!mark) row.Fail(key, "unknown mark '" + key + "' (legal: unknown, plain, window, poster)");
+    out[static_cast<int>(*mark)] = row.Get<double>(key, 0.0, 1.0);
+    sum += out[static_cast<int>(*mark)];
+  }
+  if (std::abs(sum - 1.0) > kSumTolerance) {
+    row.Fail("", "probabilities sum to " + Num(sum) + ", not 1");
+  }
+  row.Finish();
+  return out;
+}
+
+// One optional block of mark rows (`marks:` or `marks_missized:`): a row per true mark
+// (plain, window, poster) and, where `false_door` is given, the false doors' row.
+static void ReadMarkBlock(const StrictYaml& node, const char* key,
+                          std::map<map::DoorMark, ErrorModel::MarkRow>* rows,
+                          std::optional<ErrorModel::MarkRow>* false_door) {
+  if (!node.Has(key)) return;
+  const StrictYaml block = node.Child(key);
+  if (!block.IsMap()) node.Fail(key, "expected a mapping of true mark to read shares");
+  const std::string legal = false_door ? "plain, window, poster, false_door" : "plain, window, poster";
+  for (const std::string& name : block.Keys()) {
+    if (false_door && name == "false_door") {
+      *false_door = ReadMarkRow(block.Child(name));
+      continue;
+    }
+    const auto mark = map::ParseDoorMark(name);
+    if (!mark || *mark == map::DoorMark::kUnknown) {
+      block.Fail(name, "unknown true mark '" + name + "' (legal: " + legal + ")");
+    }
+    (*rows)[*mark] = ReadMarkRow(block.Child(name));
+  }
+  if (false_door && !rows->empty() && !*false_door) {
+    block.Fail("", "a `marks:` block needs a false_door row");
+  }
+  block.Finish();
+}
+
+static void ReadMarks(const StrictYaml& node, ErrorModel* m) {
+  ReadMarkBlock(node, "marks", &m->mark_read, &m->false_door_marks);
+  ReadMarkBlock(node, "marks_missized", &m->mark_read_missized, nullptr);
+  if (!m->mark_read_missized.empty() && m->mark_read.empty()) {
+    node.Fail("marks_missized", "marks_missized needs a `marks:` block");
+  }
+}
+
 static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
   const StrictYaml node = root.Child("error_model");
   ErrorModel m;
@@ -191,6 +245,7 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
     bc.Finish();
   }
   ReadLeafShares(node, &m);
+  ReadMarks(node, &m);
   node.Finish();
   root.Finish();
   return m;
@@ -258,6 +313,17 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
       }
     }
   }
+  if (model.HasMarks()) {
+    c.marks = true;
+    // A true mark the file does not list is read as the false doors are.
+    for (int k = 0; k < map::kDoorMarkCount; ++k) c.mark_read[k] = *model.false_door_marks;
+    for (const auto& [mark, row] : model.mark_read) c.mark_read[static_cast<int>(mark)] = row;
+    c.mark_read_missized = c.mark_read;
+    for (const auto& [mark, row] : model.mark_read_missized) {
+      c.mark_read_missized[static_cast<int>(mark)] = row;
+    }
+    c.false_mark = *model.false_door_marks;
+  }
   if (!model.false_door_classes.empty()) {
     for (const auto& [k, p] : model.false_door_classes) c.false_class[static_cast<int>(k)] = p;
   } else if (doors > 0) {
@@ -266,6 +332,15 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
     c.false_class[static_cast<int>(DoorClass::k36)] = 1.0;  // a map without doors
   }
   return c;
+}
+
+double Confusion::MarkLikelihood(map::DoorMark read, map::DoorMark truth, bool class_right) const {
+  if (!marks) return 1.0;
+  const ErrorModel::MarkRow& row =
+      truth == map::DoorMark::kUnknown
+          ? false_mark
+          : (class_right ? mark_read : mark_read_missized)[static_cast<int>(truth)];
+  return std::max(row[static_cast<int>(read)], kMinMarkShare);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -474,6 +549,25 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
     out += "  leaf_sliver: " + number(m.leaf_sliver) + "\n";
     out += "  leaf_wall_before: " + number(m.leaf_wall_before) + "\n";
     out += "  leaf_wall_after: " + number(m.leaf_wall_after) + "\n";
+  }
+  if (m.HasMarks()) {
+    const auto row = [&](const ErrorModel::MarkRow& r) {
+      std::string s = "{";
+      for (int k = 0; k < map::kDoorMarkCount; ++k) {
+        s += (k ? ", " : "") + std::string(map::DoorMarkName(static_cast<map::DoorMark>(k))) +
+             ": " + number(r[k]);
+      }
+      return s + "}";
+    };
+    out += "  marks:\n";
+    for (const auto& [mark, r] : m.mark_read) {
+      out += "    " + std::string(map::DoorMarkName(mark)) + ": " + row(r) + "\n";
+    }
+    out += "    false_door: " + row(*m.false_door_marks) + "\n";
+    if (!m.mark_read_missized.empty()) out += "  marks_missized:\n";
+    for (const auto& [mark, r] : m.mark_read_missized) {
+      out += "    " + std::string(map::DoorMarkName(mark)) + ": " + row(r) + "\n";
+    }
   }
   return out;
 }

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,17 @@ struct ErrorModel {
   double leaf_sliver = 0.0;
   double leaf_wall_before = 0.0;
   double leaf_wall_after = 0.0;
+  // How the leaf's mark is read (Table 6.8's supplemental marks, vision/door_mark_reader.h):
+  // per true mark of the door (plain, window, poster; a false door under `false_door`), the
+  // shares of its reads that were unknown, plain, window and poster (each row sums to 1), for
+  // doors sensed with their class (`marks:`) and for mis-sized doors (`marks_missized:`; a
+  // double door read as one leaf is framed by other edges than its jambs, and its mark read
+  // between them). Empty: marks are not modelled and the filter ignores them (the paper's).
+  using MarkRow = std::array<double, map::kDoorMarkCount>;  // indexed by map::DoorMark
+  std::map<map::DoorMark, MarkRow> mark_read;
+  std::map<map::DoorMark, MarkRow> mark_read_missized;  // a row missing: mark_read's
+  std::optional<MarkRow> false_door_marks;
+  bool HasMarks() const { return !mark_read.empty(); }
 
   // The paper's rates (Table 6.10).
   static ErrorModel Paper() { return ErrorModel{}; }
@@ -94,6 +106,14 @@ struct Confusion {
   ClassVector map_prior{};    // the map's door-class frequencies (sum 1, or all 0)
   // ErrorModel::leaf_split, leaf_sliver, leaf_wall_before, leaf_wall_after
   double leaf_split = 0, leaf_sliver = 0, leaf_before = 0, leaf_after = 0;
+  // P(read mark | the door's mark), [true][read] by map::DoorMark, and for a false door;
+  // `marks` false when the model has none (every factor is then 1).
+  bool marks = false;
+  std::array<ErrorModel::MarkRow, map::kDoorMarkCount> mark_read{}, mark_read_missized{};
+  ErrorModel::MarkRow false_mark{};
+  // The factor a door read with mark `read` gets at a map door of mark `truth` (kUnknown: a
+  // false door), its class read right or not. 1 when marks are not modelled.
+  double MarkLikelihood(map::DoorMark read, map::DoorMark truth, bool class_right = true) const;
 };
 Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index);
 

@@ -166,5 +166,74 @@ TEST(StudyConfigFile, MissingFileNamesIt) {
   }
 }
 
+TEST(ErrorModelFile, ReadsAndWritesTheMarkReads) {
+  const ErrorModel m = ParseErrorModel(
+      Model("  marks:\n"
+            "    plain: {unknown: 0.2, plain: 0.7, window: 0.1}\n"
+            "    poster: {unknown: 0.1, plain: 0.1, window: 0.2, poster: 0.6}\n"
+            "    false_door: {unknown: 0.5, plain: 0.5}\n"),
+      "m.yaml");
+  ASSERT_TRUE(m.HasMarks());
+  EXPECT_DOUBLE_EQ(m.mark_read.at(map::DoorMark::kPoster)[static_cast<int>(map::DoorMark::kPoster)],
+                   0.6);
+  const map::Map corridor = testing::CorridorMap();
+  const Confusion c = Resolve(m, map::MatchIndex(corridor));
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kPlain, map::DoorMark::kPlain), 0.7);
+  // A true mark the file leaves out (window) is read as false doors are.
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kUnknown, map::DoorMark::kWindow), 0.5);
+  // A false door is DoorMark::kUnknown on the map side; a read never seen keeps a floor.
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kPlain, map::DoorMark::kUnknown), 0.5);
+  EXPECT_GT(c.MarkLikelihood(map::DoorMark::kPoster, map::DoorMark::kPlain), 0.0);
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  EXPECT_EQ(back.mark_read, m.mark_read);
+  EXPECT_EQ(back.false_door_marks, m.false_door_marks);
+  // Without a `marks:` block every read weighs 1.
+  const Confusion none = Resolve(ErrorModel::Paper(), map::MatchIndex(corridor));
+  EXPECT_DOUBLE_EQ(none.MarkLikelihood(map::DoorMark::kPoster, map::DoorMark::kPlain), 1.0);
+}
+
+TEST(ErrorModelFile, MissizedDoorsHaveTheirOwnMarkReads) {
+  const ErrorModel m = ParseErrorModel(
+      Model("  marks:\n"
+            "    window: {plain: 0.1, window: 0.9}\n"
+            "    false_door: {unknown: 0.5, plain: 0.5}\n"
+            "  marks_missized:\n"
+            "    window: {plain: 0.3, window: 0.3, poster: 0.4}\n"),
+      "m.yaml");
+  const map::Map corridor = testing::CorridorMap();
+  const Confusion c = Resolve(m, map::MatchIndex(corridor));
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kWindow, map::DoorMark::kWindow, true), 0.9);
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kWindow, map::DoorMark::kWindow, false), 0.3);
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kPoster, map::DoorMark::kWindow, false), 0.4);
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  EXPECT_EQ(back.mark_read_missized, m.mark_read_missized);
+  try {
+    ParseErrorModel(Model("  marks_missized:\n    window: {window: 1}\n"), "m.yaml");
+    FAIL() << "accepted mis-sized mark reads without a marks block";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "error_model.marks_missized");
+  }
+}
+
+TEST(ErrorModelFile, BadMarkRowsAreRejectedWithTheirKey) {
+  const auto reason = [](const std::string& marks) {
+    try {
+      ParseErrorModel(Model("  marks:\n" + marks), "m.yaml");
+    } catch (const InputError& e) {
+      return e.key() + ": " + e.reason();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(reason("    plain: {plain: 1}\n").find("false_door row"), std::string::npos);
+  EXPECT_NE(reason("    glass: {plain: 1}\n    false_door: {plain: 1}\n").find("unknown true mark"),
+            std::string::npos);
+  EXPECT_NE(reason("    plain: {chalk: 1}\n    false_door: {plain: 1}\n").find("unknown mark"),
+            std::string::npos);
+  EXPECT_NE(reason("    plain: {plain: 0.5}\n    false_door: {plain: 1}\n").find("sum to 0.5"),
+            std::string::npos);
+  EXPECT_NE(reason("    plain: {plain: 1.5}\n    false_door: {plain: 1}\n").find("marks.plain.plain"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace stickrep::recovery

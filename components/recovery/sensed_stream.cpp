@@ -56,16 +56,11 @@ double SensedStream::Gauss() {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
 }
 
-int SensedStream::DrawClass(const ClassVector& p) {
-  double u = Uniform();
-  int last = 0;
-  for (int k = 0; k < kDoorClasses; ++k) {
-    if (p[k] <= 0.0) continue;
-    last = k;
-    if (u < p[k]) return k;
-    u -= p[k];
-  }
-  return last;
+map::DoorMark SensedStream::DrawMark(int truth) {
+  if (!confusion_.marks) return map::DoorMark::kUnknown;
+  const ErrorModel::MarkRow& row =
+      truth < 0 ? confusion_.false_mark : confusion_.mark_read[static_cast<int>(index_.mark(truth))];
+  return static_cast<map::DoorMark>(Draw(row));
 }
 
 const StreamEdge* SensedStream::At(int i) {
@@ -116,11 +111,13 @@ void SensedStream::SenseDoor(Piece p, map::SymbolCode code, double len) {
     p.code = code;
     p.true_width_in = len;
     p.whole_edge = true;
+    p.mark = DrawMark(p.truth);
   } else if (u < confusion_.class_correct[k] + confusion_.class_missized[k]) {
     p.kind = Piece::kDoor;
     p.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(confusion_.missized_to[k])));
     p.true_width_in = len;
     p.error = true;
+    p.mark = DrawMark(p.truth);
   } else {
     p.kind = Piece::kSurface;
     p.code = map::kWallCode;
@@ -162,6 +159,7 @@ void SensedStream::SplitByFalseDoor(const Piece& p, int false_class, double widt
   door.b = a + at_in + width_in;
   door.true_width_in = width_in;
   door.error = true;
+  door.mark = DrawMark(-1);
   door.start_angle = 180.0;
   Piece w2 = p;
   w2.kind = Piece::kSurface;
@@ -234,6 +232,7 @@ void SensedStream::FlushRun(bool door_follows) {
 void SensedStream::EmitDoor(const Piece& p) {
   StreamEdge e;
   e.sensed.code = p.code;
+  e.sensed.mark = p.mark;
   e.sensed.metric_in = MeasureWidth(p.true_width_in, static_cast<map::DoorClass>(p.code - 1));
   e.sensed.angle_deg = first_emitted_ ? p.start_angle : std::numeric_limits<double>::quiet_NaN();
   e.truth = p.truth;

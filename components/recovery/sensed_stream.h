@@ -24,6 +24,7 @@
 // Sensed edges are generated lazily, edge by edge, from one std::mt19937_64, so a run can
 // be replayed exactly and read by several matchers.
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <random>
@@ -92,6 +93,7 @@ class SensedStream {
     bool whole_edge = false;   // exactly one whole map edge
     bool missed_door = false;  // a true door the sensors did not see
     double start_angle = 180;  // sensed angle at its start
+    map::DoorMark mark = map::DoorMark::kUnknown;  // doors: the leaf's mark as read
   };
   void ProcessNextTrueEdge();
   // The error model's draws for one true door or wall `p` (a piece of length `len`).
@@ -108,7 +110,23 @@ class SensedStream {
   // libraries, and runs must replay the same everywhere.
   double Uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
   double Gauss();
-  int DrawClass(const ClassVector& p);
+  // An index drawn from the distribution p (the last positive entry if p sums short).
+  template <std::size_t N>
+  int Draw(const std::array<double, N>& p) {
+    double u = Uniform();
+    int last = 0;
+    for (int k = 0; k < static_cast<int>(N); ++k) {
+      if (p[k] <= 0.0) continue;
+      last = k;
+      if (u < p[k]) return k;
+      u -= p[k];
+    }
+    return last;
+  }
+  int DrawClass(const ClassVector& p) { return Draw(p); }
+  // The mark a door's leaf is read as: of map edge `truth`'s mark, or of a false door's
+  // (truth < 0); kUnknown without a draw when the model has no marks.
+  map::DoorMark DrawMark(int truth);
 
   const map::MatchIndex& index_;
   const Confusion& confusion_;

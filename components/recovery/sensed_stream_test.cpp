@@ -118,5 +118,42 @@ TEST(RunSeeds, DifferForEveryTrialAndRun) {
   EXPECT_EQ(RunSeed(7, 3, 4), RunSeed(7, 3, 4));
 }
 
+TEST_F(SensedStreamTest, DoorsCarryAMarkDrawnFromTheirOwnMarksReads) {
+  // Every true door is plain on this map; plain leaves are read plain or unknown, false
+  // doors always as posters.
+  ErrorModel em = ErrorModel::None();
+  em.wall_false_door = 0.3;
+  em.mark_read[map::DoorMark::kPlain] = {0.5, 0.5, 0.0, 0.0};
+  em.false_door_marks = ErrorModel::MarkRow{0.0, 0.0, 0.0, 1.0};
+  const Confusion cf = Resolve(em, index_);
+  int doors = 0, unknown = 0, false_doors = 0;
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    SensedStream s(index_, cf, quiet_, exact_, seed);
+    for (int i = 0; i < 20; ++i) {
+      const StreamEdge* e = s.At(i);
+      ASSERT_NE(e, nullptr);
+      if (!map::IsDoorCode(e->sensed.code)) {
+        EXPECT_EQ(e->sensed.mark, map::DoorMark::kUnknown);
+        continue;
+      }
+      if (map::IsDoorCode(index_.code(e->truth)) && e->faithful) {
+        ++doors;
+        EXPECT_NE(e->sensed.mark, map::DoorMark::kWindow);
+        EXPECT_NE(e->sensed.mark, map::DoorMark::kPoster);
+        unknown += e->sensed.mark == map::DoorMark::kUnknown;
+      } else if (!map::IsDoorCode(index_.code(e->truth))) {
+        ++false_doors;
+        EXPECT_EQ(e->sensed.mark, map::DoorMark::kPoster);
+      }
+    }
+  }
+  ASSERT_GT(doors, 100);
+  EXPECT_GT(false_doors, 10);
+  EXPECT_NEAR(static_cast<double>(unknown) / doors, 0.5, 0.12);
+  // Without marks in the model no door is read.
+  SensedStream plain(index_, Resolve(ErrorModel::Paper(), index_), quiet_, exact_, 7);
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(plain.At(i)->sensed.mark, map::DoorMark::kUnknown);
+}
+
 }  // namespace
 }  // namespace stickrep::recovery
