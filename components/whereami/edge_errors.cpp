@@ -32,7 +32,28 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
   };
   for (const auto& [width, t] : o.by_width) add(by_width[width], t);
   for (int k = 0; k < map::kDoorClassCount; ++k) add(by_class[k], o.by_class[k]);
+  for (int t = 0; t < map::kDoorMarkCount; ++t) {
+    false_mark[t] += o.false_mark[t];
+    for (int r = 0; r < map::kDoorMarkCount; ++r) {
+      mark_read[t][r] += o.mark_read[t][r];
+      mark_read_missized[t][r] += o.mark_read_missized[t][r];
+    }
+  }
 }
+
+namespace {
+
+// Counts as shares of their sum; nullopt when there are none.
+std::optional<recovery::ErrorModel::MarkRow> Shares(const EdgeErrorCounts::MarkCounts& n) {
+  long sum = 0;
+  for (long k : n) sum += k;
+  if (sum == 0) return std::nullopt;
+  recovery::ErrorModel::MarkRow row{};
+  for (int k = 0; k < map::kDoorMarkCount; ++k) row[k] = static_cast<double>(n[k]) / sum;
+  return row;
+}
+
+}  // namespace
 
 recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
   recovery::ErrorModel m;
@@ -75,6 +96,23 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
     m.leaf_sliver = leaf_split > 0 ? static_cast<double>(leaf_sliver_in.size()) / leaf_split : 0.0;
     m.leaf_wall_before = static_cast<double>(leaf_wall_before) / leaf_reads;
     m.leaf_wall_after = static_cast<double>(leaf_wall_after) / leaf_reads;
+  }
+  for (int t = 0; t < map::kDoorMarkCount; ++t) {
+    const auto mark = static_cast<map::DoorMark>(t);
+    if (const auto row = Shares(mark_read[t])) m.mark_read[mark] = *row;
+    if (const auto row = Shares(mark_read_missized[t]); row && m.mark_read.count(mark)) {
+      m.mark_read_missized[mark] = *row;
+    }
+  }
+  if (!m.mark_read.empty()) {
+    // No false door seen: its reads are taken to be the doors' reads, all marks together.
+    EdgeErrorCounts::MarkCounts all = false_mark;
+    if (!Shares(all)) {
+      for (const MarkCounts& n : mark_read) {
+        for (int r = 0; r < map::kDoorMarkCount; ++r) all[r] += n[r];
+      }
+    }
+    m.false_door_marks = Shares(all);
   }
   return m;
 }
@@ -240,12 +278,20 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
         c.missized_to[static_cast<int>(*edge.door_class)][sensed[first].code - 1]++;
         leaf = CountLeafRead(view_ring, sensed, it->second, passed_edges, p, &c);
       }
+      const int truth = static_cast<int>(map::DoorMarkOfPattern(edge.pattern));
+      auto& mark_row = sensed[first].code == want ? c.mark_read[truth] : c.mark_read_missized[truth];
+      mark_row[static_cast<int>(sensed[first].mark)]++;
       // More sensed doors on the same true door are false doors as well (but for a double
       // door's second leaf).
       for (std::size_t k = 1; k < it->second.size(); ++k) {
-        if (it->second[k] == leaf && leaf > 0) continue;
+        const map::SensedEdge& other = sensed[it->second[k]];
+        if (it->second[k] == leaf && leaf > 0) {
+          c.mark_read_missized[truth][static_cast<int>(other.mark)]++;
+          continue;
+        }
         ++c.false_doors;
-        c.false_class[sensed[it->second[k]].code - 1]++;
+        c.false_class[other.code - 1]++;
+        c.false_mark[static_cast<int>(other.mark)]++;
       }
     } else if (edge.IsWall()) {
       ++c.true_walls;
@@ -253,6 +299,7 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       for (std::size_t k : it->second) {
         ++c.false_doors;
         c.false_class[sensed[k].code - 1]++;
+        c.false_mark[static_cast<int>(sensed[k].mark)]++;
       }
     }
   }

@@ -48,11 +48,18 @@ struct EdgeErrorCounts {
   std::map<int, DoorTally> by_width;
   // The same by the door's class: the error model's per-class rates.
   std::array<DoorTally, map::kDoorClassCount> by_class{};
+  // How the leaves' marks were read (Table 6.8): [true mark][read mark] over the sensed doors
+  // on a true door, sensed with their class and mis-sized (both leaves of a split double
+  // door), and the reads of false doors.
+  using MarkCounts = std::array<long, map::kDoorMarkCount>;
+  std::array<MarkCounts, map::kDoorMarkCount> mark_read{}, mark_read_missized{};
+  MarkCounts false_mark{};
 
   void Add(const EdgeErrorCounts& other);
   // The rates as an error model (door rates per true door, false doors per true wall). Each
   // class's own rates are shrunk towards the overall ones by kClassPriorDoors doors' worth,
-  // so a class seen a few times, all correct, is not made certain.
+  // so a class seen a few times, all correct, is not made certain. The mark rows are the
+  // read shares of each true mark seen, and of the false doors.
   static constexpr double kClassPriorDoors = 20.0;
   recovery::ErrorModel ToModel(const std::string& source) const;
 };

@@ -12,6 +12,7 @@
 #include "common/strict_yaml.h"
 #include "common/units.h"
 #include "localizer/edge_assembler.h"
+#include "localizer/localizer_component.h"
 #include "localizer/sensed_doors.h"
 #include "stickrep/hallway_view.h"
 #include "stickrep/map_io.h"
@@ -170,8 +171,7 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
       "perception/landmark", [this](const message::LandmarkObservation& o) {
         ++result_.doors_observed;
         if (measuring_) {
-          assembler_.AddSighting({o.door_class, o.width_in,
-                                  o.confidence, o.odometry_distance_in + o.center_offset_in});
+          assembler_.AddSighting(localizer::LocalizerComponent::Sighting(o));
         }
       });
   e.Subscribe<message::MotionState>("robot/motion/state", [this](const message::MotionState& m) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "common/quantile.h"
@@ -147,6 +148,42 @@ void PrintIntegrity(const IntegritySummary& s, std::ostream& out) {
   }
 }
 
+Reliability::Fit FitPlatt(const std::vector<ConfidenceSample>& samples) {
+  Reliability::Fit fit;
+  fit.n = static_cast<int>(samples.size());
+  std::vector<double> x;
+  int right = 0;
+  for (const ConfidenceSample& c : samples) {
+    const double p = std::clamp(c.confidence, 1e-6, 1.0 - 1e-6);
+    x.push_back(std::log(p / (1.0 - p)));
+    right += c.correct ? 1 : 0;
+  }
+  if (fit.n < 2 || right == 0 || right == fit.n) return fit;
+  // Newton's method on the log-likelihood of the two parameters, from the identity.
+  double a = 1.0, b = 0.0;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    double ga = 0, gb = 0, haa = 0, hab = 0, hbb = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double q = 1.0 / (1.0 + std::exp(-(a * x[i] + b)));
+      const double r = (samples[i].correct ? 1.0 : 0.0) - q, w = q * (1.0 - q);
+      ga += r * x[i];
+      gb += r;
+      haa += w * x[i] * x[i];
+      hab += w * x[i];
+      hbb += w;
+    }
+    const double det = haa * hbb - hab * hab;
+    if (!(det > 0.0)) break;
+    const double da = (hbb * ga - hab * gb) / det, db = (haa * gb - hab * ga) / det;
+    a += da;
+    b += db;
+    if (std::abs(da) < 1e-9 && std::abs(db) < 1e-9) break;
+  }
+  fit.slope = a;
+  fit.offset = b;
+  return fit;
+}
+
 Reliability ReliabilityOf(const std::vector<RunResult>& results) {
   std::vector<ConfidenceSample> all, localized;
   for (const RunResult& r : results) {
@@ -155,7 +192,7 @@ Reliability ReliabilityOf(const std::vector<RunResult>& results) {
       if (c.localized) localized.push_back(c);
     }
   }
-  return {Bin(all), Bin(localized)};
+  return {Bin(all), Bin(localized), FitPlatt(all)};
 }
 
 void PrintReliability(const Reliability& r, std::ostream& out) {
@@ -165,6 +202,9 @@ void PrintReliability(const Reliability& r, std::ostream& out) {
   PrintBins(r.all, out);
   out << " poses published as LOCALIZED:\n";
   PrintBins(r.localized, out);
+  out << fmt::format(" Platt fit over the {} samples: logit(right) = {:.3f} logit(confidence) "
+                     "{:+.3f}\n",
+                     r.fit.n, r.fit.slope, r.fit.offset);
 }
 
 nlohmann::json ToJson(const IntegritySummary& s) {
@@ -191,7 +231,9 @@ nlohmann::json ToJson(const IntegritySummary& s) {
 }
 
 nlohmann::json ToJson(const Reliability& r) {
-  return {{"all", ToJson(r.all)}, {"localized", ToJson(r.localized)}};
+  return {{"all", ToJson(r.all)},
+          {"localized", ToJson(r.localized)},
+          {"fit", {{"slope", r.fit.slope}, {"offset", r.fit.offset}, {"n", r.fit.n}}}};
 }
 
 }  // namespace stickrep::whereami

@@ -58,7 +58,17 @@ struct ReliabilityBin {
 struct Reliability {
   std::vector<ReliabilityBin> all;        // every pose sample with a candidate
   std::vector<ReliabilityBin> localized;  // those published as LOCALIZED
+  // Platt scaling of every sample (localizer/confidence_calibration.h): the maximum-likelihood
+  // logit(right) = slope * logit(published) + offset. Run with the calibration off (slope 1,
+  // offset 0) the published confidence is the posterior and the fit is the calibration.
+  struct Fit {
+    double slope = 1.0, offset = 0.0;
+    int n = 0;
+  } fit;
 };
+// The maximum-likelihood logistic fit of `correct` on the logit of `confidence` (clipped to
+// [1e-6, 1 - 1e-6]); slope 1, offset 0 for fewer than two samples or one outcome only.
+Reliability::Fit FitPlatt(const std::vector<ConfidenceSample>& samples);
 Reliability ReliabilityOf(const std::vector<RunResult>& results);
 void PrintReliability(const Reliability& r, std::ostream& out);
 

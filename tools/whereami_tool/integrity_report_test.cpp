@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -86,6 +88,27 @@ TEST(IntegrityReportTest, ReliabilityBinsCountTheShareOfPosesThatWereRight) {
   EXPECT_DOUBLE_EQ(b.correct, 0.5);
   EXPECT_DOUBLE_EQ(b.mean_confidence, (0.97 + 0.96) / 2.0);
   EXPECT_EQ(bin_of(rel.localized, 0.3).n, 0);  // not published as LOCALIZED
+}
+
+TEST(IntegrityReportTest, PlattFitRecoversTheCurveTheSamplesWereDrawnFrom) {
+  // Samples right with probability sigmoid(0.7 logit(p) - 1.0), on a grid of posteriors:
+  // the fit finds the two parameters back.
+  std::vector<ConfidenceSample> samples;
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 20000; ++i) {
+    const double p = 0.02 + 0.9799 * u(rng);
+    const double z = 0.7 * std::log(p / (1.0 - p)) - 1.0;
+    samples.push_back({p, false, u(rng) < 1.0 / (1.0 + std::exp(-z))});
+  }
+  const Reliability::Fit fit = FitPlatt(samples);
+  EXPECT_EQ(fit.n, 20000);
+  EXPECT_NEAR(fit.slope, 0.7, 0.05);
+  EXPECT_NEAR(fit.offset, -1.0, 0.08);
+  // One outcome only: nothing to fit.
+  const Reliability::Fit none = FitPlatt({{0.9, true, true}, {0.8, true, true}});
+  EXPECT_DOUBLE_EQ(none.slope, 1.0);
+  EXPECT_DOUBLE_EQ(none.offset, 0.0);
 }
 
 }  // namespace

@@ -130,6 +130,26 @@ int TallyMeasuredRuns(const RunSetup& setup, const ToolOptions& options, std::os
   return failed;
 }
 
+// How the leaves' marks (Table 6.8) were read: counts, true mark by row, false doors last.
+void PrintMarkReads(const EdgeErrorCounts& total, std::ostream& out) {
+  out << "  door marks read (Table 6.8), sensed doors:  unknown    plain   window   poster\n";
+  for (const bool right : {true, false}) {
+    for (int t = 1; t < map::kDoorMarkCount; ++t) {
+      const auto mark = static_cast<map::DoorMark>(t);
+      const EdgeErrorCounts::MarkCounts& n = (right ? total.mark_read : total.mark_read_missized)[t];
+      long sum = 0;
+      for (long k : n) sum += k;
+      if (sum == 0) continue;
+      out << fmt::format("    {:<40} {:>8} {:>8} {:>8} {:>8}  ({:.1f} % read as {})\n",
+                         fmt::format("true {}, {}", map::DoorMarkName(mark),
+                                     right ? "class right" : "mis-sized"),
+                         n[0], n[1], n[2], n[3], 100.0 * n[t] / sum, map::DoorMarkName(mark));
+    }
+  }
+  const EdgeErrorCounts::MarkCounts& f = total.false_mark;
+  out << fmt::format("    {:<40} {:>8} {:>8} {:>8} {:>8}\n", "false doors", f[0], f[1], f[2], f[3]);
+}
+
 // The measured rates beside Table 6.10, the walls' length error and the doors by width.
 void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts& total,
                         std::ostream& out) {
@@ -166,6 +186,7 @@ void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts
                      total.leaf_sliver_in.size(), Median(total.leaf_sliver_in), one_leaf,
                      total.leaf_wall_before, total.leaf_wall_after,
                      one_leaf - total.leaf_wall_before - total.leaf_wall_after);
+  PrintMarkReads(total, out);
   out << "(Table 6.10 counts frames; ours counts the edges the localizer is given, after the "
          "frames of a door are voted into one edge)\n";
 }

@@ -1,0 +1,81 @@
+// The live error model's counts held against a hand-made passage: which sensed door lay on
+// which true edge, and how the leaves' marks were read (Table 6.8).
+#include "whereami/edge_errors.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace stickrep::whereami {
+namespace {
+
+using map::DoorMark;
+
+// W100, a 36 in door with a poster, W100, a 36 in door with a vision panel, W100.
+map::Ring MarkedRing() {
+  map::Ring ring;
+  ring.id = "hall";
+  ring.edges = {map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36, "poster"),
+                map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36, "old_window"),
+                map::Edge::Wall(100)};
+  return ring;
+}
+
+map::SensedEdge Sensed(map::SymbolCode code, double metric_in, DoorMark mark) {
+  map::SensedEdge e;
+  e.code = code;
+  e.metric_in = metric_in;
+  e.mark = mark;
+  return e;
+}
+
+TEST(EdgeErrorsTest, CountsTheMarkReadOfEachTrueDoorAndOfFalseDoors) {
+  const map::Ring ring = MarkedRing();
+  std::vector<TruthSample> truth;
+  const double ends[] = {100, 136, 236, 272, 372};
+  for (double odo = 0.0; odo <= 371.0; odo += 1.0) {
+    int edge = 0;
+    while (odo >= ends[edge]) ++edge;
+    truth.push_back({odo, edge});
+  }
+  const map::SymbolCode door36 = map::DoorCode(map::DoorClass::k36);
+  const map::SymbolCode door40 = map::DoorCode(map::DoorClass::k40);
+  // The poster read, a false door read plain in the middle wall, the window door read as a
+  // 40 in door and its mark not read.
+  const std::vector<map::SensedEdge> sensed = {
+      Sensed(map::kWallCode, 100, DoorMark::kUnknown), Sensed(door36, 36, DoorMark::kPoster),
+      Sensed(map::kWallCode, 34, DoorMark::kUnknown),  Sensed(door36, 36, DoorMark::kPlain),
+      Sensed(map::kWallCode, 30, DoorMark::kUnknown),  Sensed(door40, 36, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 100, DoorMark::kUnknown)};
+  const std::vector<localizer::EdgeAssembler::Span> spans = {
+      {0, 100}, {100, 136}, {136, 170}, {170, 206}, {206, 236}, {236, 272}, {272, 372}};
+  const EdgeErrorCounts c = CompareWithTruth(ring, sensed, spans, truth, 0.0, 372.0);
+  EXPECT_EQ(c.true_doors, 2);
+  EXPECT_EQ(c.correct, 1);
+  EXPECT_EQ(c.missized, 1);
+  EXPECT_EQ(c.false_doors, 1);
+  const auto at = [](DoorMark m) { return static_cast<int>(m); };
+  EXPECT_EQ(c.mark_read[at(DoorMark::kPoster)][at(DoorMark::kPoster)], 1);
+  EXPECT_EQ(c.mark_read_missized[at(DoorMark::kWindow)][at(DoorMark::kUnknown)], 1);
+  EXPECT_EQ(c.mark_read[at(DoorMark::kWindow)][at(DoorMark::kUnknown)], 0);
+  EXPECT_EQ(c.false_mark[at(DoorMark::kPlain)], 1);
+
+  const recovery::ErrorModel m = c.ToModel("test");
+  ASSERT_TRUE(m.HasMarks());
+  // Only the poster was read with its class: one row; a mis-sized row needs its own row of
+  // reads with the class right (the window has none).
+  EXPECT_EQ(m.mark_read.size(), 1u);
+  EXPECT_TRUE(m.mark_read_missized.empty());
+  EXPECT_DOUBLE_EQ(m.mark_read.at(DoorMark::kPoster)[at(DoorMark::kPoster)], 1.0);
+  ASSERT_TRUE(m.false_door_marks);
+  EXPECT_DOUBLE_EQ((*m.false_door_marks)[at(DoorMark::kPlain)], 1.0);
+  // The model written from the counts loads again.
+  EXPECT_NO_THROW(recovery::ParseErrorModel(recovery::FormatErrorModelYaml(m, "t"), "t.yaml"));
+}
+
+TEST(EdgeErrorsTest, RunsWithoutAnyDoorGiveNoMarkRows) {
+  EXPECT_FALSE(EdgeErrorCounts{}.ToModel("empty").HasMarks());
+}
+
+}  // namespace
+}  // namespace stickrep::whereami
