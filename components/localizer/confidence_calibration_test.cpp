@@ -55,10 +55,13 @@ LocalizerSettings Load(const std::string& text) {
   return LoadLocalizerSettings(StrictYaml::LoadString(text, "localizer.yaml").Child("localizer"));
 }
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
+// The shipped text with `key`'s value (the rest of its line) replaced by `value`.
+std::string WithValue(std::string text, const std::string& key, const std::string& value) {
+  const auto at = text.find(key + ": ");
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return text;
+  const auto from = at + key.size() + 2;
+  return text.replace(from, text.find('\n', from) - from, value);
 }
 
 TEST(ConfidenceCalibrationTest, TheShippedThresholdIsACalibratedConfidence) {
@@ -71,8 +74,7 @@ TEST(ConfidenceCalibrationTest, TheShippedThresholdIsACalibratedConfidence) {
 }
 
 TEST(ConfidenceCalibrationTest, AConfidenceTheFilterCannotReachIsRefusedWithItsKey) {
-  const std::string text = Replace(Shipped(), "localized_confidence: 0.955",
-                                   "localized_confidence: 0.99999");
+  const std::string text = WithValue(Shipped(), "localized_confidence", "0.99999");
   try {
     Load(text);
     FAIL() << "accepted a confidence that needs a posterior over 0.999999";
@@ -83,9 +85,7 @@ TEST(ConfidenceCalibrationTest, AConfidenceTheFilterCannotReachIsRefusedWithItsK
 }
 
 TEST(ConfidenceCalibrationTest, ASlopeOfZeroIsRefused) {
-  EXPECT_THROW(Load(Replace(Shipped(), "confidence_calibration_slope: 0.765",
-                            "confidence_calibration_slope: 0")),
-               InputError);
+  EXPECT_THROW(Load(WithValue(Shipped(), "confidence_calibration_slope", "0")), InputError);
 }
 
 }  // namespace

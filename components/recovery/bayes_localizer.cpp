@@ -177,10 +177,15 @@ void BayesLocalizer::WeighMark(const map::SensedEdge& e) {
   const Confusion& cf = model_.confusion;
   if (!cf.marks || !map::IsDoorCode(e.code)) return;
   // Every phase of state s holds the sensed door at map edge s / 2: that door's leaf, or a
-  // false door in a wall there (a map edge that is no door has no mark). The N phase of a
-  // door of the sensed class holds it read right; the leaf phases, a leaf of a double door.
+  // false door where the map has no door. The N phase of a door of the sensed class holds
+  // it read right; the leaf phases, a leaf of a double door.
   for (int s = 0; s < states_; ++s) {
     const int g = s / 2;
+    if (!map::IsDoorCode(index_.code(g))) {
+      const double f = cf.FalseDoorMarkLikelihood(e.mark);
+      for (auto* v : {&n_, &i1_, &i2_, &s1_, &s2_, &t_, &h_}) (*v)[s] *= f;
+      continue;
+    }
     const map::DoorMark truth = index_.mark(g);
     const double right = cf.MarkLikelihood(e.mark, truth, index_.code(g) == e.code);
     const double leaf = cf.MarkLikelihood(e.mark, truth, false);

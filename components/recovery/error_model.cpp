@@ -277,6 +277,30 @@ std::vector<DoorClass> DefaultMissizedTargets(DoorClass c) {
   return {};
 }
 
+// Confusion::mark_read[kUnknown]: the read rows mixed by the map's surveyed doors' marks,
+// or equally over the rows the model gives when the map surveyed none.
+static void MixUnsurveyed(const ErrorModel& model, const map::MatchIndex& index, Confusion* c) {
+  std::array<double, map::kDoorMarkCount> weight{};
+  double total = 0.0;
+  for (int g = 0; g < index.EdgeCount(); ++g) {
+    if (!map::IsDoorCode(index.code(g)) || index.mark(g) == map::DoorMark::kUnknown) continue;
+    weight[static_cast<int>(index.mark(g))] += 1.0;
+    total += 1.0;
+  }
+  if (total == 0.0) {
+    for (const auto& [mark, row] : model.mark_read) weight[static_cast<int>(mark)] = 1.0;
+    total = static_cast<double>(model.mark_read.size());
+  }
+  const int unknown = static_cast<int>(map::DoorMark::kUnknown);
+  for (auto* rows : {&c->mark_read, &c->mark_read_missized}) {
+    ErrorModel::MarkRow mixed{};
+    for (int m = unknown + 1; m < map::kDoorMarkCount; ++m) {
+      for (int r = 0; r < map::kDoorMarkCount; ++r) mixed[r] += weight[m] / total * (*rows)[m][r];
+    }
+    (*rows)[unknown] = mixed;
+  }
+}
+
 Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   Confusion c;
   c.correct = model.door_correct;
@@ -323,6 +347,7 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
       c.mark_read_missized[static_cast<int>(mark)] = row;
     }
     c.false_mark = *model.false_door_marks;
+    MixUnsurveyed(model, index, &c);
   }
   if (!model.false_door_classes.empty()) {
     for (const auto& [k, p] : model.false_door_classes) c.false_class[static_cast<int>(k)] = p;
@@ -337,10 +362,13 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
 double Confusion::MarkLikelihood(map::DoorMark read, map::DoorMark truth, bool class_right) const {
   if (!marks) return 1.0;
   const ErrorModel::MarkRow& row =
-      truth == map::DoorMark::kUnknown
-          ? false_mark
-          : (class_right ? mark_read : mark_read_missized)[static_cast<int>(truth)];
+      (class_right ? mark_read : mark_read_missized)[static_cast<int>(truth)];
   return std::max(row[static_cast<int>(read)], kMinMarkShare);
+}
+
+double Confusion::FalseDoorMarkLikelihood(map::DoorMark read) const {
+  if (!marks) return 1.0;
+  return std::max(false_mark[static_cast<int>(read)], kMinMarkShare);
 }
 
 // ---------------------------------------------------------------------------------------

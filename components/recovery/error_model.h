@@ -109,11 +109,15 @@ struct Confusion {
   // P(read mark | the door's mark), [true][read] by map::DoorMark, and for a false door;
   // `marks` false when the model has none (every factor is then 1).
   bool marks = false;
+  // Row kUnknown is a map door whose mark the map does not give: the rows of the marks
+  // mixed as the map's surveyed doors have them (or equally, over the model's rows, on a
+  // map with none surveyed).
   std::array<ErrorModel::MarkRow, map::kDoorMarkCount> mark_read{}, mark_read_missized{};
   ErrorModel::MarkRow false_mark{};
-  // The factor a door read with mark `read` gets at a map door of mark `truth` (kUnknown: a
-  // false door), its class read right or not. 1 when marks are not modelled.
+  // The factor a door read with mark `read` gets at a map door of mark `truth`, its class
+  // read right or not; at a false door. 1 when marks are not modelled.
   double MarkLikelihood(map::DoorMark read, map::DoorMark truth, bool class_right = true) const;
+  double FalseDoorMarkLikelihood(map::DoorMark read) const;
 };
 Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index);
 

@@ -181,9 +181,13 @@ TEST(ErrorModelFile, ReadsAndWritesTheMarkReads) {
   EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kPlain, map::DoorMark::kPlain), 0.7);
   // A true mark the file leaves out (window) is read as false doors are.
   EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kUnknown, map::DoorMark::kWindow), 0.5);
-  // A false door is DoorMark::kUnknown on the map side; a read never seen keeps a floor.
-  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kPlain, map::DoorMark::kUnknown), 0.5);
+  EXPECT_DOUBLE_EQ(c.FalseDoorMarkLikelihood(map::DoorMark::kPlain), 0.5);
+  // A read never seen keeps a floor.
   EXPECT_GT(c.MarkLikelihood(map::DoorMark::kPoster, map::DoorMark::kPlain), 0.0);
+  // The corridor's doors carry no pattern: a door the map does not survey is read as the
+  // model's rows are, mixed equally (plain and poster here).
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kPlain, map::DoorMark::kUnknown), 0.4);
+  EXPECT_DOUBLE_EQ(c.MarkLikelihood(map::DoorMark::kPoster, map::DoorMark::kUnknown), 0.3);
   const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
   EXPECT_EQ(back.mark_read, m.mark_read);
   EXPECT_EQ(back.false_door_marks, m.false_door_marks);

@@ -73,7 +73,8 @@ DoorMark DoorMarkOfPattern(std::string_view pattern) {
   if (pattern.find("window") != std::string_view::npos && pattern.rfind("no_", 0) != 0) {
     return DoorMark::kWindow;
   }
-  return DoorMark::kPlain;
+  if (pattern == "plain" || pattern.rfind("no_", 0) == 0) return DoorMark::kPlain;
+  return DoorMark::kUnknown;
 }
 
 const char* DoorClassName(DoorClass door_class) {

@@ -61,14 +61,16 @@ DoorClass LeafClass(DoorClass door_class);
 
 // What the camera can tell of a door's leaf: the supplemental marks of Table 6.8 reduced
 // to what a frame shows (a glazed vision panel, a poster, or a plain leaf). kUnknown: the
-// leaf was not read (nothing in view, too little contrast).
+// leaf was not read (nothing in view, too little contrast), or on a map door, not surveyed.
 enum class DoorMark : std::uint8_t { kUnknown, kPlain, kWindow, kPoster };
 inline constexpr int kDoorMarkCount = 4;
 // "unknown", "plain", "window", "poster".
 const char* DoorMarkName(DoorMark mark);
 std::optional<DoorMark> ParseDoorMark(std::string_view name);
 // The mark a map `pattern` puts on a door: a pattern naming a poster is a poster, one naming
-// a window (but not "no_window") a window, any other (or none) a plain leaf.
+// a window (but not "no_window") a window, "plain" or one beginning "no_" a plain leaf. Any
+// other pattern, and none, is kUnknown: the survey did not say what the leaf shows (a floor
+// plan drawn from an architect's drawing lists no marks), so a read there says nothing.
 DoorMark DoorMarkOfPattern(std::string_view pattern);
 
 // One attributed edge (§6.1). Doors carry their class and a metric: the class width (map

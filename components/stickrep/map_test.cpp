@@ -12,6 +12,22 @@ namespace {
 
 Map Box() { return ParseMap(testing::kBoxMapYaml, "box.yaml"); }
 
+TEST(DoorMarkTest, APatternNamesAMarkOnlyWhereItSaysOne) {
+  EXPECT_EQ(DoorMarkOfPattern("poster"), DoorMark::kPoster);
+  EXPECT_EQ(DoorMarkOfPattern("two_new_windows"), DoorMark::kWindow);
+  EXPECT_EQ(DoorMarkOfPattern("old_window"), DoorMark::kWindow);
+  EXPECT_EQ(DoorMarkOfPattern("no_window"), DoorMark::kPlain);
+  EXPECT_EQ(DoorMarkOfPattern("plain"), DoorMark::kPlain);
+  // Not surveyed, or a mark the camera cannot tell: no claim about the leaf.
+  EXPECT_EQ(DoorMarkOfPattern(""), DoorMark::kUnknown);
+  EXPECT_EQ(DoorMarkOfPattern("kick_plate"), DoorMark::kUnknown);
+  for (const DoorMark m : {DoorMark::kUnknown, DoorMark::kPlain, DoorMark::kWindow,
+                           DoorMark::kPoster}) {
+    EXPECT_EQ(ParseDoorMark(DoorMarkName(m)), m);
+  }
+  EXPECT_FALSE(ParseDoorMark("glass"));
+}
+
 TEST(MapTraversalTest, ForwardWrapsAroundAClosedRing) {
   const Map map = Box();
   Cursor c{0, 5, +1};

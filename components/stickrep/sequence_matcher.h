@@ -79,7 +79,8 @@ class MatchIndex {
   int MaxRingSize() const { return max_ring_size_; }
 
   SymbolCode code(int g) const { return code_[g]; }
-  // The mark on door g's leaf (DoorMarkOfPattern of its pattern); kUnknown for non-doors.
+  // The mark on door g's leaf (DoorMarkOfPattern of its pattern: kUnknown where the map
+  // does not say); kUnknown for non-doors.
   DoorMark mark(int g) const { return static_cast<DoorMark>(mark_[g]); }
   double metric(int g) const { return metric_[g]; }
   // Angle of the node at the start / end of edge g in ring order.

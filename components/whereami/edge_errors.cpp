@@ -99,10 +99,20 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
   }
   for (int t = 0; t < map::kDoorMarkCount; ++t) {
     const auto mark = static_cast<map::DoorMark>(t);
-    if (const auto row = Shares(mark_read[t])) m.mark_read[mark] = *row;
-    if (const auto row = Shares(mark_read_missized[t]); row && m.mark_read.count(mark)) {
-      m.mark_read_missized[mark] = *row;
+    const auto right = Shares(mark_read[t]);
+    if (!right) continue;
+    m.mark_read[mark] = *right;
+    // The mis-sized reads of a mark, shrunk towards its reads with the class right by
+    // kClassPriorDoors doors' worth: a few mis-sized doors, all read one way, do not make
+    // that read certain.
+    long n = 0;
+    for (long k : mark_read_missized[t]) n += k;
+    if (n == 0) continue;
+    recovery::ErrorModel::MarkRow row{};
+    for (int r = 0; r < map::kDoorMarkCount; ++r) {
+      row[r] = (mark_read_missized[t][r] + kClassPriorDoors * (*right)[r]) / (n + kClassPriorDoors);
     }
+    m.mark_read_missized[mark] = row;
   }
   if (!m.mark_read.empty()) {
     // No false door seen: its reads are taken to be the doors' reads, all marks together.
@@ -278,15 +288,21 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
         c.missized_to[static_cast<int>(*edge.door_class)][sensed[first].code - 1]++;
         leaf = CountLeafRead(view_ring, sensed, it->second, passed_edges, p, &c);
       }
+      // A door the map gives no mark for is left out of the mark counts: what the renderer
+      // drew there is no measure of what an unsurveyed door shows.
       const int truth = static_cast<int>(map::DoorMarkOfPattern(edge.pattern));
       auto& mark_row = sensed[first].code == want ? c.mark_read[truth] : c.mark_read_missized[truth];
-      mark_row[static_cast<int>(sensed[first].mark)]++;
+      if (truth != static_cast<int>(map::DoorMark::kUnknown)) {
+        mark_row[static_cast<int>(sensed[first].mark)]++;
+      }
       // More sensed doors on the same true door are false doors as well (but for a double
       // door's second leaf).
       for (std::size_t k = 1; k < it->second.size(); ++k) {
         const map::SensedEdge& other = sensed[it->second[k]];
         if (it->second[k] == leaf && leaf > 0) {
-          c.mark_read_missized[truth][static_cast<int>(other.mark)]++;
+          if (truth != static_cast<int>(map::DoorMark::kUnknown)) {
+            c.mark_read_missized[truth][static_cast<int>(other.mark)]++;
+          }
           continue;
         }
         ++c.false_doors;

@@ -59,7 +59,8 @@ struct EdgeErrorCounts {
   // The rates as an error model (door rates per true door, false doors per true wall). Each
   // class's own rates are shrunk towards the overall ones by kClassPriorDoors doors' worth,
   // so a class seen a few times, all correct, is not made certain. The mark rows are the
-  // read shares of each true mark seen, and of the false doors.
+  // read shares of each true mark seen (mis-sized reads shrunk likewise towards the reads
+  // with the class right), and of the false doors.
   static constexpr double kClassPriorDoors = 20.0;
   recovery::ErrorModel ToModel(const std::string& source) const;
 };
