@@ -151,7 +151,8 @@ TEST_F(SensedStreamTest, DoorsCarryAMarkDrawnFromTheirOwnMarksReads) {
   EXPECT_GT(false_doors, 10);
   EXPECT_NEAR(static_cast<double>(unknown) / doors, 0.5, 0.12);
   // Without marks in the model no door is read.
-  SensedStream plain(index_, Resolve(ErrorModel::Paper(), index_), quiet_, exact_, 7);
+  const Confusion paper = Resolve(ErrorModel::Paper(), index_);  // the stream keeps a reference
+  SensedStream plain(index_, paper, quiet_, exact_, 7);
   for (int i = 0; i < 20; ++i) EXPECT_EQ(plain.At(i)->sensed.mark, map::DoorMark::kUnknown);
 }
 
