@@ -39,17 +39,6 @@ constexpr std::uint64_t kSeed = 6808;
 constexpr double kDoorStartIn = 120.0;
 constexpr double kHallwayWidthIn = 240.0;  // room to stand 10 ft from the wall
 
-ImageView ViewOf(const cv::Mat& image) {
-  ImageView v;
-  v.width_px = image.cols;
-  v.height_px = image.rows;
-  v.step_bytes = static_cast<int>(image.step[0]);
-  v.encoding = "mono8";
-  v.data = image.data;
-  v.size_bytes = image.step[0] * static_cast<std::size_t>(image.rows);
-  return v;
-}
-
 // A uniform grey frame of the default camera's size.
 cv::Mat Grey(int level = 128) { return cv::Mat(480, 512, CV_8UC1, cv::Scalar(level)); }
 
@@ -72,30 +61,30 @@ void ExpectUnknown(const DoorMarkReading& r, const std::string& what) {
 TEST(DoorMarkReaderTest, BadFramesAreUnknown) {
   const cv::Mat image = Grey();
   const DoorMarkParams p;
-  ImageView v = ViewOf(image);
+  ImageView v = Mono8View(image);
   v.data = nullptr;
   ExpectUnknown(ReadDoorMark(v, 100, 400, 72.0, p), "null data");
-  v = ViewOf(image);
+  v = Mono8View(image);
   v.encoding = "rgb8";
   ExpectUnknown(ReadDoorMark(v, 100, 400, 72.0, p), "encoding");
-  v = ViewOf(image);
+  v = Mono8View(image);
   v.step_bytes = 100;
   v.size_bytes = 100 * 480;
   ExpectUnknown(ReadDoorMark(v, 100, 400, 72.0, p), "step below width");
-  v = ViewOf(image);
+  v = Mono8View(image);
   v.size_bytes -= 1;
   ExpectUnknown(ReadDoorMark(v, 100, 400, 72.0, p), "short data");
-  v = ViewOf(image);
+  v = Mono8View(image);
   v.width_px = 0;
   ExpectUnknown(ReadDoorMark(v, 100, 400, 72.0, p), "zero width");
-  v = ViewOf(image);
+  v = Mono8View(image);
   v.height_px = 1 << 20;
   ExpectUnknown(ReadDoorMark(v, 100, 400, 72.0, p), "absurd height");
 }
 
 TEST(DoorMarkReaderTest, BadJambsRangesAndBandsAreUnknown) {
   const cv::Mat image = Grey();
-  const ImageView v = ViewOf(image);
+  const ImageView v = Mono8View(image);
   const DoorMarkParams p;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
@@ -128,7 +117,7 @@ TEST(DoorMarkReaderTest, BadJambsRangesAndBandsAreUnknown) {
 // A leaf at (or within min_mark_contrast of) white can show no pale mark: unknown.
 TEST(DoorMarkReaderTest, AWhiteLeafIsUnknownNotPlain) {
   const cv::Mat image = Grey(245);
-  const DoorMarkReading r = ReadDoorMark(ViewOf(image), 100, 400, 72.0, DoorMarkParams{});
+  const DoorMarkReading r = ReadDoorMark(Mono8View(image), 100, 400, 72.0, DoorMarkParams{});
   ExpectUnknown(r, "white leaf");
   EXPECT_DOUBLE_EQ(r.face_level, 245.0);
 }
@@ -173,7 +162,7 @@ Shot ReadRendered(const CameraRenderer& renderer, const Scene& scene, const Pose
   for (const world::DoorTruth& d : frame.truth.doors) {
     if (d.door_index != 0) continue;
     shot.both_jambs = d.both_jambs_visible;
-    shot.reading = ReadDoorMark(ViewOf(frame.image), d.left_column_px, d.right_column_px,
+    shot.reading = ReadDoorMark(Mono8View(frame.image), d.left_column_px, d.right_column_px,
                                 frame.truth.axis_range_in, DoorMarkParams{});
   }
   return shot;
@@ -278,7 +267,7 @@ TEST(DoorMarkReaderTest, ADoubleDoorCutByTheFrameIsUnknown) {
   ASSERT_TRUE(left && right);
   EXPECT_LT(std::min(*left, *right), 0.0);
   EXPECT_GT(std::max(*left, *right), 511.0);
-  const DoorMarkReading r = ReadDoorMark(ViewOf(frame.image), std::min(*left, *right),
+  const DoorMarkReading r = ReadDoorMark(Mono8View(frame.image), std::min(*left, *right),
                                          std::max(*left, *right), frame.truth.axis_range_in, {});
   ExpectUnknown(r, Describe(r));
 }

@@ -727,4 +727,15 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   return result;
 }
 
+ImageView Mono8View(const cv::Mat& image) {
+  ImageView view;
+  view.width_px = image.cols;
+  view.height_px = image.rows;
+  view.step_bytes = static_cast<int>(image.step[0]);
+  view.encoding = "mono8";
+  view.data = image.data;
+  view.size_bytes = image.step[0] * static_cast<std::size_t>(image.rows);
+  return view;
+}
+
 }  // namespace stickrep::vision

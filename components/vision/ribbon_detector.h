@@ -19,6 +19,9 @@ struct ImageView {
   std::size_t size_bytes = 0;
 };
 
+// The view of a single-channel 8-bit image, as a camera stream would deliver it.
+ImageView Mono8View(const cv::Mat& image);
+
 // Which image rows the detector processes.
 enum class RowMode {
   kFiveRows,   // Figure 4.1 step (0): five rows chosen from the coaxial sonar range

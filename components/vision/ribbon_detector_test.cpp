@@ -175,17 +175,6 @@ TEST(RibbonDetectorTest, RawViewWithPaddedStepGivesTheSameResultAsTheMat) {
 
 // --- Bad input: a clear error result, never a crash. ---
 
-ImageView GoodView(const cv::Mat& image) {
-  ImageView view;
-  view.width_px = image.cols;
-  view.height_px = image.rows;
-  view.step_bytes = static_cast<int>(image.step[0]);
-  view.encoding = "mono8";
-  view.data = image.data;
-  view.size_bytes = image.step[0] * image.rows;
-  return view;
-}
-
 TEST(RibbonDetectorBadInputTest, EmptyMatIsAnEmptyFrameError) {
   const DetectResult result = RibbonDetector().Detect(cv::Mat(), 72.0);
   EXPECT_EQ(result.status, DetectStatus::kEmptyFrame);
@@ -199,32 +188,32 @@ TEST(RibbonDetectorBadInputTest, ColourMatIsAnEncodingError) {
 
 TEST(RibbonDetectorBadInputTest, ZeroSizedViewIsAnEmptyFrameError) {
   const cv::Mat image = Band(10, 20);
-  ImageView view = GoodView(image);
+  ImageView view = Mono8View(image);
   view.width_px = 0;
   EXPECT_EQ(RibbonDetector().Detect(view, 72.0).status, DetectStatus::kEmptyFrame);
-  view = GoodView(image);
+  view = Mono8View(image);
   view.data = nullptr;
   EXPECT_EQ(RibbonDetector().Detect(view, 72.0).status, DetectStatus::kEmptyFrame);
 }
 
 TEST(RibbonDetectorBadInputTest, DataLengthNotMatchingTheSizeIsRejected) {
   const cv::Mat image = Band(10, 20);
-  ImageView view = GoodView(image);
+  ImageView view = Mono8View(image);
   view.size_bytes -= 1;
   const DetectResult result = RibbonDetector().Detect(view, 72.0);
   EXPECT_EQ(result.status, DetectStatus::kSizeMismatch);
   EXPECT_THAT(result.message, ::testing::HasSubstr("does not match"));
-  view = GoodView(image);
+  view = Mono8View(image);
   view.step_bytes = 100;  // below the width
   EXPECT_EQ(RibbonDetector().Detect(view, 72.0).status, DetectStatus::kSizeMismatch);
-  view = GoodView(image);
+  view = Mono8View(image);
   view.height_px = 1 << 20;  // absurd header
   EXPECT_EQ(RibbonDetector().Detect(view, 72.0).status, DetectStatus::kSizeMismatch);
 }
 
 TEST(RibbonDetectorBadInputTest, UnknownEncodingIsRejected) {
   const cv::Mat image = Band(10, 20);
-  ImageView view = GoodView(image);
+  ImageView view = Mono8View(image);
   view.encoding = "rgb8";
   EXPECT_EQ(RibbonDetector().Detect(view, 72.0).status, DetectStatus::kUnknownEncoding);
 }
