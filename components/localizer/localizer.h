@@ -93,6 +93,7 @@ class Localizer {
   // Advances the odometer and heading; true if the estimate changed (edges were matched).
   bool Advance(double odometer_in, double heading_rad = 0.0);
   const PoseEstimate& estimate() const { return estimate_; }
+  const LocalizerConfig& config() const { return config_; }
   std::uint64_t restarts() const { return restarts_; }
   std::uint64_t losses() const { return losses_; }
   std::uint64_t edges_total() const { return edges_total_; }

@@ -117,6 +117,9 @@ class Run {
   const virtual_robot::VirtualRobotComponent& robot_;
   virtual_robot::WorldSim& sim_;
   const map::HallwayView& view_;
+  // The localizer weighs the doors' marks: two doors are alike only when their surveyed
+  // marks agree too.
+  const bool marks_;
   // Measuring: the same assembly as the localizer's, never restarted but by reversals.
   localizer::EdgeAssembler assembler_;
   EdgeErrorMeter meter_;
@@ -158,6 +161,7 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
       robot_(stack_.virtual_robot()),
       sim_(stack_.sim()),
       view_(stack_.localizer().view()),
+      marks_(stack_.localizer().localizer().config().bayes.confusion.marks),
       assembler_(localizer::MakeLocalizerConfig(setup.localizer, view_.view()).assembler),
       // From 20 ft on: the robot has aligned and the partial first edges are behind.
       meter_(view_.view().ring(ring), assembler_, 240.0),
@@ -325,6 +329,10 @@ int Run::EdgesAlike(int held_edge, int held_dir, int true_edge, int true_dir) co
     int alike = 0;
     for (; alike < 100 && a >= 0 && b >= 0; ++alike) {
       if (index.code(a) != index.code(b)) break;
+      if (marks_ && index.mark(a) != index.mark(b) && index.mark(a) != map::DoorMark::kUnknown &&
+          index.mark(b) != map::DoorMark::kUnknown) {
+        break;
+      }
       if (index.code(a) == map::kWallCode &&
           std::abs(index.metric(a) - index.metric(b)) > std::max(0.10 * index.metric(a), 6.0)) {
         break;
