@@ -26,8 +26,9 @@ constexpr int kDomainId = 24;
 // The stretch walked: from 20 in into wall edge 4 of wing3_corridor, forward through 24
 // edges (walls and doors in turn, so that every wall is sensed as one; the 30/30 door of edge
 // 13 and the 36/36 of edge 15 are what single the place out), to 36 in into the wall after
-// the last door. With the error model measured on realistic hallways (more missed and false
-// doors) 20 edges left a second candidate above 0.1 %; 24 leave one.
+// the last door. Every door is read with the mark the map gives it. With the error model
+// measured on realistic hallways (more missed and false doors) 20 edges left a second
+// candidate above 0.1 %; 24 leave one.
 constexpr char kRingId[] = "wing3_corridor";
 constexpr int kStartEdge = 4;
 constexpr double kStartOffsetIn = 20.0;
@@ -67,11 +68,13 @@ msgs::DoorClass ToMsg(map::DoorClass c) {
   return msgs::DOOR_REJECTED;
 }
 
-// A door as the detector sees it: a single door, or one leaf of a double door.
+// A door as the detector sees it: a single door, or one leaf of a double door, with the mark
+// the map gives the door (Table 6.8), read on every leaf as the landmark process reads it.
 struct Leaf {
   map::DoorClass door_class = map::DoorClass::k36;
   double width_in = 0.0;
   double centre_in = 0.0;  // along the wall, in odometer coordinates
+  map::DoorMark mark = map::DoorMark::kUnknown;
 };
 
 // What the landmark and locomotion processes publish while the robot drives the stretch.
@@ -93,13 +96,14 @@ Drive LayOut(const map::Ring& ring) {
     EXPECT_EQ(e.IsDoor(), door_expected) << "edge " << i << " of " << ring.id;
     EXPECT_TRUE(e.IsDoor() || e.IsWall()) << "edge " << i << " of " << ring.id;
     if (e.IsDoor()) {
+      const map::DoorMark mark = map::DoorMarkOfPattern(e.pattern);
       if (map::IsDoubleDoor(*e.door_class)) {
         const double leaf_in = (e.metric_in - kStileIn) / 2.0;
         const map::DoorClass leaf = map::LeafClass(*e.door_class);
-        drive.leaves.push_back({leaf, leaf_in, at_in + leaf_in / 2.0});
-        drive.leaves.push_back({leaf, leaf_in, at_in + e.metric_in - leaf_in / 2.0});
+        drive.leaves.push_back({leaf, leaf_in, at_in + leaf_in / 2.0, mark});
+        drive.leaves.push_back({leaf, leaf_in, at_in + e.metric_in - leaf_in / 2.0, mark});
       } else {
-        drive.leaves.push_back({*e.door_class, e.metric_in, at_in + e.metric_in / 2.0});
+        drive.leaves.push_back({*e.door_class, e.metric_in, at_in + e.metric_in / 2.0, mark});
       }
       last_door_end_in = at_in + e.metric_in;
     }
@@ -155,9 +159,10 @@ class LocalizerProcessTest : public ProcessFixture {
   // One classified door in the frame taken at `odometer_in`, as the landmark process
   // reports it.
   void PublishLandmark(msgs::DoorClass door_class, double width_in, double odometer_in,
-                       double centre_in) {
+                       double centre_in, map::DoorMark mark = map::DoorMark::kUnknown) {
     msgs::LandmarkObservation o;
     o.door_class(door_class);
+    o.mark(static_cast<msgs::DoorMark>(mark));
     o.width_in(width_in);
     o.confidence(0.9);
     o.range_in(72.0);
@@ -202,7 +207,8 @@ TEST_F(LocalizerProcessTest, ReachesLocalizedOnTheTrueEdgeFromTheDoorsOfAStretch
     }
     for (const Leaf& leaf : drive.leaves) {
       if (std::abs(leaf.centre_in - odometer_in) <= kInViewIn) {
-        PublishLandmark(ToMsg(leaf.door_class), leaf.width_in, odometer_in, leaf.centre_in);
+        PublishLandmark(ToMsg(leaf.door_class), leaf.width_in, odometer_in, leaf.centre_in,
+                        leaf.mark);
       }
     }
     PublishOdometry(odometer_in);

@@ -103,7 +103,8 @@ void ProcessFixture::StopAllAndExpectCleanExit(double timeout_s) {
   for (auto* p : running) p->Signal(SIGTERM);
   for (auto* p : running) {
     ASSERT_TRUE(p->WaitExit(timeout_s)) << p->name() << " did not stop\n" << Outputs();
-    EXPECT_EQ(p->exit_code(), 0) << p->name() << "\n" << p->output();
+    EXPECT_EQ(p->exit_code(), 0) << p->name() << " (signal " << p->term_signal() << ")\n"
+                                 << p->output();
   }
 }
 
