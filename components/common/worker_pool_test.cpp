@@ -41,16 +41,37 @@ TEST(WorkerPoolTest, EachThreadMakesItsOwnTaskAndNeverMoreThreadsThanIndices) {
 }
 
 TEST(WorkerPoolTest, AnExceptionStopsTheBatchAndReachesTheCaller) {
+  // One thread: nothing after the failing index is handed out.
   std::atomic<std::size_t> ran{0};
+  const auto fail_at_10 = [&] {
+    return [&](std::size_t i) {
+      ++ran;
+      if (i == 10) throw std::runtime_error("index 10");
+    };
+  };
+  EXPECT_THROW(ParallelFor(100000, 1, fail_at_10), std::runtime_error);
+  EXPECT_EQ(ran.load(), 11u);
+  // Two threads: the other thread stops at its next index. Once index 10 has thrown, each
+  // later index takes 0.2 ms, so the other thread would need 20 s to drain the batch while
+  // the failing thread goes from its throw to the pool's record of it; with trivial tasks
+  // it could drain it in that gap on a loaded machine.
+  ran = 0;
+  std::atomic<bool> thrown{false};
   EXPECT_THROW(ParallelFor(100000, 2,
                            [&] {
                              return [&](std::size_t i) {
                                ++ran;
-                               if (i == 10) throw std::runtime_error("index 10");
+                               if (i == 10) {
+                                 thrown = true;
+                                 throw std::runtime_error("index 10");
+                               }
+                               if (i > 10 && thrown) {
+                                 std::this_thread::sleep_for(std::chrono::microseconds(200));
+                               }
                              };
                            }),
                std::runtime_error);
-  EXPECT_LT(ran.load(), 100000u);  // no further indices were handed out once it failed
+  EXPECT_LT(ran.load(), 100000u);
   // A task that cannot be made fails the same way.
   EXPECT_THROW(ParallelFor(3, 2, []() -> IndexTask { throw std::invalid_argument("setup"); }),
                std::invalid_argument);
