@@ -159,8 +159,20 @@ Reliability::Fit FitPlatt(const std::vector<ConfidenceSample>& samples) {
     right += c.correct ? 1 : 0;
   }
   if (fit.n < 2 || right == 0 || right == fit.n) return fit;
-  // Newton's method on the log-likelihood of the two parameters, from the identity.
+  const auto log_likelihood = [&](double a, double b) {
+    double ll = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      // log sigmoid(z) for a right sample, log sigmoid(-z) for a wrong one, without overflow.
+      const double z = (samples[i].correct ? 1.0 : -1.0) * (a * x[i] + b);
+      ll -= z > 0.0 ? std::log1p(std::exp(-z)) : -z + std::log1p(std::exp(z));
+    }
+    return ll;
+  };
+  // Newton's method on the log-likelihood of the two parameters, from the identity. A full
+  // step overshoots when most samples sit at a logit of 14 (posteriors of 1, clamped) and
+  // the identity is far from the fit; each step is halved until the likelihood rises.
   double a = 1.0, b = 0.0;
+  double ll = log_likelihood(a, b);
   for (int iteration = 0; iteration < 100; ++iteration) {
     double ga = 0, gb = 0, haa = 0, hab = 0, hbb = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
@@ -175,9 +187,16 @@ Reliability::Fit FitPlatt(const std::vector<ConfidenceSample>& samples) {
     const double det = haa * hbb - hab * hab;
     if (!(det > 0.0)) break;
     const double da = (hbb * ga - hab * gb) / det, db = (haa * gb - hab * ga) / det;
-    a += da;
-    b += db;
-    if (std::abs(da) < 1e-9 && std::abs(db) < 1e-9) break;
+    double t = 1.0, next = log_likelihood(a + da, b + db);
+    for (int halving = 0; halving < 40 && !(next >= ll); ++halving) {
+      t *= 0.5;
+      next = log_likelihood(a + t * da, b + t * db);
+    }
+    if (!(next >= ll)) break;
+    a += t * da;
+    b += t * db;
+    ll = next;
+    if (std::abs(t * da) < 1e-9 && std::abs(t * db) < 1e-9) break;
   }
   fit.slope = a;
   fit.offset = b;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -109,6 +110,39 @@ TEST(IntegrityReportTest, PlattFitRecoversTheCurveTheSamplesWereDrawnFrom) {
   const Reliability::Fit none = FitPlatt({{0.9, true, true}, {0.8, true, true}});
   EXPECT_DOUBLE_EQ(none.slope, 1.0);
   EXPECT_DOUBLE_EQ(none.offset, 0.0);
+}
+
+TEST(IntegrityReportTest, PlattFitConvergesWhenMostSamplesSitAtTheTop) {
+  // A filter sure of most places: a third of the samples at a posterior of 1 (clamped to
+  // 1 - 1e-6), right 96.7 % of the time, the rest spread below and right far less often than
+  // said. Undamped Newton steps from the identity overshoot here and diverge; the fit must
+  // still end at the maximum of the likelihood.
+  const struct {
+    double confidence;
+    int n, right;
+  } bins[] = {{0.2184, 4273, 421},  {0.6453, 2342, 719}, {0.8534, 878, 393},
+              {0.9257, 588, 296},   {0.9747, 1123, 732}, {0.9926, 351, 284},
+              {0.9974, 656, 529},   {1.0, 2358, 2280}};
+  std::vector<ConfidenceSample> samples;
+  for (const auto& b : bins) {
+    for (int i = 0; i < b.n; ++i) samples.push_back({b.confidence, false, i < b.right});
+  }
+  const Reliability::Fit fit = FitPlatt(samples);
+  ASSERT_TRUE(std::isfinite(fit.slope) && std::isfinite(fit.offset));
+  EXPECT_GT(fit.slope, 0.1);
+  EXPECT_LT(fit.slope, 1.0);
+  // At the maximum the gradient of the log-likelihood vanishes: the fitted confidences sum
+  // to the number right, and their logit-weighted sums agree.
+  double gb = 0.0, ga = 0.0;
+  for (const ConfidenceSample& c : samples) {
+    const double p = std::clamp(c.confidence, 1e-6, 1.0 - 1e-6);
+    const double x = std::log(p / (1.0 - p));
+    const double r = (c.correct ? 1.0 : 0.0) - 1.0 / (1.0 + std::exp(-(fit.slope * x + fit.offset)));
+    gb += r;
+    ga += r * x;
+  }
+  EXPECT_NEAR(gb, 0.0, 1e-3);
+  EXPECT_NEAR(ga, 0.0, 1e-2);
 }
 
 }  // namespace
