@@ -233,20 +233,6 @@ TEST_F(BayesLocalizerTest, ExplainsAFalseDoorThatSplitsAWall) {
   EXPECT_GT(b.best().probability, 0.9);
 }
 
-TEST_F(BayesLocalizerTest, AWallSensedWholeLeavesNoRoomForAFalseDoorInIt) {
-  // The 90 in wall is sensed whole; the 36 in door after it cannot be a false door inside
-  // that wall (90 + 36 > 90), so the wall's place keeps only what an unexplained edge
-  // leaves there, however often such walls and doors repeat.
-  BayesLocalizer b = Make(ErrorModel::Paper());
-  b.Add(Wall(150, kNaN, true));
-  b.Add(Door(DoorClass::k40));
-  b.Add(Wall(90));
-  b.Add(Door(DoorClass::k36));
-  EXPECT_EQ(b.best().edge, 9);
-  EXPECT_LT(b.PoseProbability(8, +1), 2.0 * b.model().settings.outlier)
-      << "belief left on a false door inside the 90 in wall";
-}
-
 TEST_F(BayesLocalizerTest, ExplainsAMissedDoorAsOneLongWall) {
   BayesLocalizer b = Make(ErrorModel::Paper());
   b.Add(Wall(150, kNaN, true));
