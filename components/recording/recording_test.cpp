@@ -257,7 +257,18 @@ TEST(RecordingTest, ReplayTakesAStretchRemapsAndLoops) {
   looping.replayer().Stop();
   EXPECT_GE(looping.replayer().report().passes, 3);
   EXPECT_FALSE(looping.replayer().report().finished);
-  EXPECT_EQ(sequence[11], 11u);  // the second pass starts where the first did
+  // Every pass starts where the first did. (The looping session's writer is new: its first
+  // samples may go out before the reader has matched it, so the first pass may be cut.)
+  int wraps = 0;
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    EXPECT_GE(sequence[i], 11u) << "sample " << i;
+    EXPECT_LE(sequence[i], 21u) << "sample " << i;
+    if (i > 0 && sequence[i] < sequence[i - 1]) {
+      ++wraps;
+      EXPECT_EQ(sequence[i], 11u) << "pass " << wraps + 1 << " starts at sample " << i;
+    }
+  }
+  EXPECT_GE(wraps, 2);
 
   // A remap of a topic the recording does not have, and a start past its end.
   ReplayOptions bad = o;
