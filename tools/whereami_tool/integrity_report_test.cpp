@@ -137,7 +137,8 @@ TEST(IntegrityReportTest, PlattFitConvergesWhenMostSamplesSitAtTheTop) {
   for (const ConfidenceSample& c : samples) {
     const double p = std::clamp(c.confidence, 1e-6, 1.0 - 1e-6);
     const double x = std::log(p / (1.0 - p));
-    const double r = (c.correct ? 1.0 : 0.0) - 1.0 / (1.0 + std::exp(-(fit.slope * x + fit.offset)));
+    const double q = 1.0 / (1.0 + std::exp(-(fit.slope * x + fit.offset)));
+    const double r = (c.correct ? 1.0 : 0.0) - q;
     gb += r;
     ga += r * x;
   }
