@@ -58,6 +58,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
                                        std::to_string(s.bayes_keep_threshold) + ")");
   }
   s.bayes_kidnap_per_edge = c.Get<double>("bayes_kidnap_per_edge", 0.0, 0.5);
+  s.bayes_false_door_fit = c.Get<bool>("bayes_false_door_fit");
   c.Finish();
   return s;
 }
@@ -75,6 +76,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;
     config.bayes.settings.confirm_silent_in = settings.bayes_confirm_silent_in;
     config.bayes.settings.kidnap_per_edge = settings.bayes_kidnap_per_edge;
+    config.bayes.settings.false_door_fit = settings.bayes_false_door_fit;
     config.keep_threshold = settings.bayes_keep_threshold;
     config.calibration = settings.calibration;
     config.lost_threshold = settings.bayes_lost_threshold;

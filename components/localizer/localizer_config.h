@@ -37,6 +37,8 @@ struct LocalizerSettings {
   double bayes_keep_threshold = 0.9;
   double bayes_lost_threshold = 0.05;
   double bayes_kidnap_per_edge = 0.0;
+  // A false door must fit in the wall that holds it (recovery::BayesSettings::false_door_fit).
+  bool bayes_false_door_fit = false;
 };
 
 // Reads the `localizer` section; every key required, unknown keys rejected (InputError with

@@ -233,7 +233,9 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
         const double fit = std::exp(-0.5 * over * over);
         pn = clean * fit / total_length_in_;
         // ... or the part up to a false door ahead in the same wall.
-        if (wall) pi1 = cf.false_door * 0.5 * fit / total_length_in_;
+        if (wall) {
+          pi1 = cf.false_door * 0.5 * fit * RoomForFalseDoor(len, e.metric_in) / total_length_in_;
+        }
         if (wall) {
           // ... or it began in an earlier wall or door and ran over missed doors into this
           // wall (one sensed wall over a flat stretch). Direction-dependent.
@@ -397,7 +399,7 @@ void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
   }
   if (e.metric_in <= len1) {
     // W1 of a wall holding a false door: the ribbon is anywhere in the wall.
-    const double add = pn * angle * pf / len1;
+    const double add = pn * angle * pf / len1 * RoomForFalseDoor(len1, e.metric_in);
     if (add > ni1_[s1]) {
       nc1_[s1] = e.metric_in;
       nlb1_[s1] = 0;
@@ -525,7 +527,8 @@ void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double 
     if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
       // ... ending in the first part of a wall that holds a false door.
       const int sw = State(w, dir);
-      const double add = pn * angle * p * Missed(d) * pf / len_w;
+      const double add =
+          pn * angle * p * Missed(d) * pf / len_w * RoomForFalseDoor(len_w, e.metric_in - before_w);
       if (add > ni1_[sw]) {
         nc1_[sw] = e.metric_in - before_w;
         nlb1_[sw] = 0;
@@ -548,7 +551,7 @@ void BayesLocalizer::NextFromFirstPart(int s, double p1, const map::SensedEdge& 
     // The false door that ended W1.
     const double w = e.metric_in > 0.0 ? e.metric_in : ClassWidth(e.code);
     const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
-    ni2_[s] += p1 * angle * model_.confusion.false_class[e.code - 1];
+    ni2_[s] += p1 * angle * model_.confusion.false_class[e.code - 1] * FalseDoorFits(s, w);
     nc2_[s] = c1_[s] + w;
     nc1_[s] = c1_[s];  // I1 and I2 of one wall never hold mass at the same step
     nlb2_[s] = lb1_[s];
@@ -564,6 +567,26 @@ void BayesLocalizer::NextFromSecondPart(int s, double p2, const map::SensedEdge&
     const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
     nn_[s] += p2 * angle * SecondPartDensity(s, e);
   }
+}
+
+double BayesLocalizer::Fits(double len, double used_in, double width_in) const {
+  const SensingNoise& nz = model_.noise;
+  const double base = nz.WallSigmaIn(len);
+  const double wsig = nz.width_sigma_rel * width_in;
+  const double sigma = std::max(
+      1.0, std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
+  return 0.5 * std::erfc(-(len - used_in - width_in) / (sigma * std::sqrt(2.0)));
+}
+
+double BayesLocalizer::RoomForFalseDoor(double len, double w1_in) const {
+  if (!model_.settings.false_door_fit) return 1.0;
+  // The narrowest door class: a false door takes at least this much of the wall it is in.
+  return Fits(len, w1_in, map::DoorClassWidthIn(map::DoorClass::k30));
+}
+
+double BayesLocalizer::FalseDoorFits(int s, double width_in) const {
+  if (!model_.settings.false_door_fit) return 1.0;
+  return Fits(index_.metric(s / 2), c1_[s], width_in);
 }
 
 double BayesLocalizer::SecondPartDensity(int s, const map::SensedEdge& e) const {

@@ -136,6 +136,17 @@ class BayesLocalizer {
   double LeafWallWeight(int k, int c, double wall_in, double len) const;
   void NextFromFirstPart(int s, double p1, const map::SensedEdge& e);
   void NextFromSecondPart(int s, double p2, const map::SensedEdge& e);
+  // A wall's first part W1 is taken uniform over the whole wall; the ribbon of a false door
+  // after it must still lie inside the wall. Without that, a wall sensed whole followed by a
+  // door leaves belief on "a false door inside the wall just sensed" until the next wall
+  // disproves it, a share made again at every door that caps the posterior of a right place.
+  // Fits: the probability that `width_in` more fits in a wall `len` long after `used_in`
+  // (the rest is not negative beyond the odometry and jamb noise). RoomForFalseDoor: after
+  // W1 there is room for the narrowest door. FalseDoorFits: the false door sensed after W1
+  // of state s fits in the rest of its wall. Both are 1 unless settings.false_door_fit.
+  double Fits(double len, double used_in, double width_in) const;
+  double RoomForFalseDoor(double len, double w1_in) const;
+  double FalseDoorFits(int s, double width_in) const;
   // The density of the wall `e` as W2, the rest of the wall of state s after its false door.
   double SecondPartDensity(int s, const map::SensedEdge& e) const;
   void Normalise();

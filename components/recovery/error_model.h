@@ -171,6 +171,13 @@ struct BayesSettings {
   // the evidence against it comes. 0: never (the study's runs). The localizer applies it
   // only while it holds a pose (BayesLocalizer::SetKidnapShare).
   double kidnap_per_edge = 0.0;
+  // A false door must fit in the wall that holds it: the first part W1 of a wall leaves room
+  // for the narrowest door, and the false door sensed after it fits in the rest, within the
+  // odometry and jamb noise (BayesLocalizer::Fits). Off, W1 is uniform over the whole wall
+  // and any false door is taken after it, which leaves belief on "a false door inside the
+  // wall just sensed" at every door (docs/whereami.md, "The doors' marks"). Off in the
+  // study, which was measured without it.
+  bool false_door_fit = false;
 };
 
 struct StudyConfig {
