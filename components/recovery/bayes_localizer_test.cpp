@@ -18,12 +18,14 @@ using testing::Wall;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 BayesLocalizer MakeLocalizer(const map::MatchIndex& index, const ErrorModel& em,
-                            double threshold = 0.99, int confirm_edges = 0) {
+                            double threshold = 0.99, int confirm_edges = 0,
+                            bool false_door_fit = false) {
   BayesModel m;
   m.confusion = Resolve(em, index);
   m.noise = SensingNoise{};
   m.settings.threshold = threshold;
   m.settings.confirm_edges = confirm_edges;
+  m.settings.false_door_fit = false_door_fit;
   return BayesLocalizer(index, m);
 }
 
@@ -238,12 +240,7 @@ TEST_F(BayesLocalizerTest, ExplainsAFalseDoorThatSplitsAWall) {
 // edge leaves there, however often such walls and doors repeat; without it (the study's
 // model) the false door is taken after a first part anywhere in the wall.
 BayesLocalizer WallThenDoor(const map::MatchIndex& index, bool false_door_fit) {
-  BayesModel m;
-  m.confusion = Resolve(ErrorModel::Paper(), index);
-  m.noise = SensingNoise{};
-  m.settings.threshold = 0.99;
-  m.settings.false_door_fit = false_door_fit;
-  BayesLocalizer b(index, m);
+  BayesLocalizer b = MakeLocalizer(index, ErrorModel::Paper(), 0.99, 0, false_door_fit);
   b.Add(Wall(150, kNaN, true));
   b.Add(Door(DoorClass::k40));
   b.Add(Wall(90));
