@@ -65,12 +65,15 @@ std::string WithValue(std::string text, const std::string& key, const std::strin
 }
 
 TEST(ConfidenceCalibrationTest, TheShippedThresholdIsACalibratedConfidence) {
-  const LocalizerSettings s = Load(Shipped());
-  EXPECT_GT(s.calibration.slope, 0.0);
-  // The filter's own threshold is the posterior whose calibrated confidence is the one
-  // declared: never below it for an over-confident filter.
-  EXPECT_NEAR(s.calibration.Calibrated(s.bayes_threshold), s.localized_confidence, 1e-9);
-  EXPECT_GE(s.bayes_threshold, s.localized_confidence);
+  const LocalizerSettings shipped = Load(Shipped());
+  ASSERT_TRUE(shipped.on_marked_maps.has_value());
+  for (const ObservationSettings& s : {shipped.observation, *shipped.on_marked_maps}) {
+    EXPECT_GT(s.calibration.slope, 0.0);
+    // The filter's own threshold is the posterior whose calibrated confidence is the one
+    // declared: never below it for an over-confident filter.
+    EXPECT_NEAR(s.calibration.Calibrated(s.bayes_threshold), s.localized_confidence, 1e-9);
+    EXPECT_GE(s.bayes_threshold, s.localized_confidence);
+  }
 }
 
 TEST(ConfidenceCalibrationTest, AConfidenceTheFilterCannotReachIsRefusedWithItsKey) {

@@ -6,6 +6,52 @@
 #include "stickrep/sequence_matcher.h"
 
 namespace stickrep::localizer {
+namespace {
+
+// The keys of one observation model (ObservationSettings) in `c`; `keep_threshold` is the
+// belief a held pose must keep, which must lie between the LOST threshold and the posterior
+// the bar needs.
+ObservationSettings LoadObservation(const StrictYaml& c, double keep_threshold) {
+  ObservationSettings o;
+  o.error_model_file = ResolvePath(c.Get<std::string>("error_model_file"), c.file());
+  o.calibration.slope = c.Get<double>("confidence_calibration_slope", 0.05, 20.0);
+  o.calibration.offset = c.Get<double>("confidence_calibration_offset", -20.0, 20.0);
+  o.localized_confidence = c.Get<double>("localized_confidence", 0.5, 0.999999);
+  o.bayes_threshold = o.calibration.PosteriorFor(o.localized_confidence);
+  if (o.bayes_threshold > 0.999999) {
+    c.Fail("localized_confidence", "needs a posterior of " + std::to_string(o.bayes_threshold) +
+                                       " under this calibration: more than the filter's 0.999999");
+  }
+  if (keep_threshold > o.bayes_threshold) {
+    c.Fail("localized_confidence", "needs a posterior of " + std::to_string(o.bayes_threshold) +
+                                       ", under bayes_keep_threshold (" +
+                                       std::to_string(keep_threshold) + ")");
+  }
+  o.bayes_lost_threshold = c.Get<double>("bayes_lost_threshold", 0.0, 0.999999);
+  if (o.bayes_lost_threshold > keep_threshold) {
+    c.Fail("bayes_lost_threshold",
+           "must not be above bayes_keep_threshold (" + std::to_string(keep_threshold) + ")");
+  }
+  o.bayes_false_door_fit = c.Get<bool>("bayes_false_door_fit");
+  return o;
+}
+
+}  // namespace
+
+bool HasSurveyedMarks(const map::Map& m) {
+  for (const map::Ring& ring : m.rings()) {
+    for (const map::Edge& e : ring.edges) {
+      if (e.IsDoor() && map::DoorMarkOfPattern(e.pattern) != map::DoorMark::kUnknown) return true;
+    }
+  }
+  return false;
+}
+
+LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m) {
+  if (settings.on_marked_maps && HasSurveyedMarks(m)) settings.observation = *settings.on_marked_maps;
+  settings.on_marked_maps.reset();
+  return settings;
+}
 
 LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   LocalizerSettings s;
@@ -18,7 +64,6 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   } else {
     c.Fail("method", "'" + method + "' is not one of: deterministic, bayes");
   }
-  s.error_model_file = ResolvePath(c.Get<std::string>("error_model_file"), c.file());
   s.study_file = ResolvePath(c.Get<std::string>("study_file"), c.file());
   config.tolerance.metric_rel = c.Get<double>("metric_tolerance_rel", 0.0, 1.0);
   config.tolerance.metric_abs_in = c.Get<double>("metric_tolerance_abs_in", 0.0, 120.0, "in");
@@ -36,29 +81,17 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.view.max_recess_in = c.Get<double>("max_recess_in", 0.0, 600.0, "in");
   s.view.door_view_margin_in = c.Get<double>("door_view_margin_in", 0.0, 60.0, "in");
   s.publish_rate_hz = c.Get<double>("publish_rate_hz", 0.1, 50.0, "Hz");
-  s.calibration.slope = c.Get<double>("confidence_calibration_slope", 0.05, 20.0);
-  s.calibration.offset = c.Get<double>("confidence_calibration_offset", -20.0, 20.0);
-  s.localized_confidence = c.Get<double>("localized_confidence", 0.5, 0.999999);
-  s.bayes_threshold = s.calibration.PosteriorFor(s.localized_confidence);
-  if (s.bayes_threshold > 0.999999) {
-    c.Fail("localized_confidence", "needs a posterior of " + std::to_string(s.bayes_threshold) +
-                                       " under this calibration: more than the filter's 0.999999");
-  }
   s.bayes_outlier = c.Get<double>("bayes_outlier", 1e-9, 0.5);
   s.bayes_confirm_edges = c.Get<int>("bayes_confirm_edges", 0, 20);
   s.bayes_confirm_silent_in = c.Get<double>("bayes_confirm_silent_in", 0.0, 600.0, "in");
   s.bayes_keep_threshold = c.Get<double>("bayes_keep_threshold", 0.0, 0.999999);
-  if (s.bayes_keep_threshold > s.bayes_threshold) {
-    c.Fail("bayes_keep_threshold", "must not be above the posterior localized_confidence needs (" +
-                                       std::to_string(s.bayes_threshold) + ")");
-  }
-  s.bayes_lost_threshold = c.Get<double>("bayes_lost_threshold", 0.0, 0.999999);
-  if (s.bayes_lost_threshold > s.bayes_keep_threshold) {
-    c.Fail("bayes_lost_threshold", "must not be above bayes_keep_threshold (" +
-                                       std::to_string(s.bayes_keep_threshold) + ")");
-  }
   s.bayes_kidnap_per_edge = c.Get<double>("bayes_kidnap_per_edge", 0.0, 0.5);
-  s.bayes_false_door_fit = c.Get<bool>("bayes_false_door_fit");
+  s.observation = LoadObservation(c, s.bayes_keep_threshold);
+  if (c.Has("on_marked_maps")) {
+    const StrictYaml marked = c.Child("on_marked_maps");
+    s.on_marked_maps = LoadObservation(marked, s.bayes_keep_threshold);
+    marked.Finish();
+  }
   c.Finish();
   return s;
 }
@@ -67,19 +100,20 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
   LocalizerConfig config = settings.localizer;
   if (config.method == MatchMethod::kBayes) {
     // The observation model: the landmark pipeline's confusion and the sensing noise.
-    const recovery::ErrorModel errors = recovery::LoadErrorModel(settings.error_model_file);
+    const ObservationSettings& o = settings.observation;
+    const recovery::ErrorModel errors = recovery::LoadErrorModel(o.error_model_file);
     const recovery::StudyConfig study = recovery::LoadStudyConfig(settings.study_file);
     const map::MatchIndex index(matched);
     config.bayes = recovery::BayesModel{recovery::Resolve(errors, index), study.noise, study.bayes};
-    config.bayes.settings.threshold = settings.bayes_threshold;
+    config.bayes.settings.threshold = o.bayes_threshold;
     config.bayes.settings.outlier = settings.bayes_outlier;
     config.bayes.settings.confirm_edges = settings.bayes_confirm_edges;
     config.bayes.settings.confirm_silent_in = settings.bayes_confirm_silent_in;
     config.bayes.settings.kidnap_per_edge = settings.bayes_kidnap_per_edge;
-    config.bayes.settings.false_door_fit = settings.bayes_false_door_fit;
+    config.bayes.settings.false_door_fit = o.bayes_false_door_fit;
     config.keep_threshold = settings.bayes_keep_threshold;
-    config.calibration = settings.calibration;
-    config.lost_threshold = settings.bayes_lost_threshold;
+    config.calibration = o.calibration;
+    config.lost_threshold = o.bayes_lost_threshold;
     config.bayes.settings.max_step_in = settings.view.max_step_in;
   }
   return config;

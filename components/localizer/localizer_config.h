@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "common/strict_yaml.h"
@@ -9,15 +10,11 @@
 
 namespace stickrep::localizer {
 
-// The localizer process's settings (configs/localizer.yaml). The Bayes matcher's
-// observation model is read from the files named here once the map is known
-// (MakeLocalizerConfig).
-struct LocalizerSettings {
-  LocalizerConfig localizer;   // everything but the Bayes model
-  map::HallwayViewConfig view;
+// The settings that go with one observation model: the error model, the calibration fitted
+// on runs under it, the bar a pose must reach and the LOST threshold chosen under that
+// calibration. They are chosen together; one changed alone breaks the others' meaning.
+struct ObservationSettings {
   std::string error_model_file;  // resolved against the settings file
-  std::string study_file;
-  double publish_rate_hz = 2.0;
   // The Bayes filter's posterior as the published confidence, and the calibrated confidence
   // a pose needs to be declared LOCALIZED (1 - it: the stated risk that it is wrong).
   ConfidenceCalibration calibration;
@@ -25,29 +22,53 @@ struct LocalizerSettings {
   // The posterior the Bayes matcher needs to declare a pose (replaces the study's): the one
   // whose calibrated confidence is localized_confidence.
   double bayes_threshold = 0.995;
+  // Once localized: the belief under which a pose given up is LOST (above it: RECOVERING).
+  double bayes_lost_threshold = 0.05;
+  // A false door must fit in the wall that holds it (recovery::BayesSettings::false_door_fit).
+  bool bayes_false_door_fit = false;
+};
+
+// The localizer process's settings (configs/localizer.yaml). The Bayes matcher's
+// observation model is read from the files named here once the map is known
+// (MakeLocalizerConfig).
+struct LocalizerSettings {
+  LocalizerConfig localizer;   // everything but the Bayes model
+  map::HallwayViewConfig view;
+  // The observation model for a map whose doors carry no surveyed marks, and the one for a
+  // map whose doors do (Table 6.8), if it differs: ForMap picks one.
+  ObservationSettings observation;
+  std::optional<ObservationSettings> on_marked_maps;
+  std::string study_file;
+  double publish_rate_hz = 2.0;
   // The probability that a sensed edge is one the error model cannot explain (replaces the
   // study's).
   double bayes_outlier = 1e-4;
   // Further edges over which the best place must keep the threshold.
   int bayes_confirm_edges = 0;
   double bayes_confirm_silent_in = 0.0;
-  // Once localized: the belief the pose must keep to stay LOCALIZED, the belief under which
-  // it is LOST (between the two: RECOVERING), and the probability per edge that the robot was
-  // carried anywhere (recovery::BayesSettings::kidnap_per_edge).
+  // Once localized: the belief the pose must keep to stay LOCALIZED (below it the pose is
+  // given up: LOST or RECOVERING, ObservationSettings::bayes_lost_threshold), and the
+  // probability per edge that the robot was carried anywhere
+  // (recovery::BayesSettings::kidnap_per_edge).
   double bayes_keep_threshold = 0.9;
-  double bayes_lost_threshold = 0.05;
   double bayes_kidnap_per_edge = 0.0;
-  // A false door must fit in the wall that holds it (recovery::BayesSettings::false_door_fit).
-  bool bayes_false_door_fit = false;
 };
 
-// Reads the `localizer` section; every key required, unknown keys rejected (InputError with
-// file, line and key).
+// Whether any door of `m` carries a surveyed mark (DoorMarkOfPattern is not kUnknown).
+bool HasSurveyedMarks(const map::Map& m);
+
+// `settings` with the observation model for `m`: on_marked_maps where it is set and `m` has
+// surveyed marks, the default one otherwise.
+LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m);
+
+// Reads the `localizer` section; every key required but `on_marked_maps`, unknown keys
+// rejected (InputError with file, line and key).
 LocalizerSettings LoadLocalizerSettings(const StrictYaml& section);
 
 // The localizer's configuration for matching against `matched` (the hallway view of the
-// map): for the Bayes method, the observation model from the error model and study files
-// (their errors are InputErrors naming those files).
+// map): for the Bayes method, the observation model from `settings.observation`'s error
+// model and the study file (their errors are InputErrors naming those files). Call it with
+// ForMap's settings.
 LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map::Map& matched);
 
 }  // namespace stickrep::localizer
