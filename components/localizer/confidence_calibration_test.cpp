@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "common/config_paths.h"
 #include "common/input_error.h"
 #include "localizer/localizer_config.h"
+#include "localizer/shipped_settings.h"
 
 namespace stickrep::localizer {
 namespace {
@@ -47,12 +47,6 @@ TEST(ConfidenceCalibrationTest, PosteriorForInvertsTheCalibration) {
   }
   // 99.5 % right needs a posterior of 0.99973 (docs/whereami.md).
   EXPECT_NEAR(c.PosteriorFor(0.995), 0.99973, 1e-5);
-}
-
-std::string Shipped() { return ReadYamlText(DefaultConfigDir() + "/localizer.yaml"); }
-
-LocalizerSettings Load(const std::string& text) {
-  return LoadLocalizerSettings(StrictYaml::LoadString(text, "localizer.yaml").Child("localizer"));
 }
 
 // The shipped text with `key`'s value (the rest of its line) replaced by `value`.

@@ -31,14 +31,13 @@ LocalizerComponent::LocalizerComponent(component::Context& ctx, const map::Map& 
       head_radius_in_(robot.sonar_ring.head_radius_in),
       out_(out) {
   settings.view.camera_fov_deg = robot.camera.fov_deg;  // doors too wide to see whole
-  const bool marked = settings.on_marked_maps.has_value() && HasSurveyedMarks(map);
   settings = ForMap(std::move(settings), map);
   view_ = std::make_unique<map::HallwayView>(map, settings.view);
   const map::Map& matched = view_->view();
   const LocalizerConfig config = MakeLocalizerConfig(settings, matched);
   if (config.method == MatchMethod::kBayes) {
     ctx.log->info("Bayes matcher ({}): error model {}, declared at confidence {} (posterior {})",
-                  marked ? "the map's doors carry surveyed marks" : "the default model",
+                  settings.observation_for_marked_map ? "the map's doors carry surveyed marks" : "the default model",
                   settings.observation.error_model_file, settings.observation.localized_confidence,
                   config.bayes.settings.threshold);
   }

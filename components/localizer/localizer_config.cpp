@@ -48,7 +48,8 @@ bool HasSurveyedMarks(const map::Map& m) {
 }
 
 LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m) {
-  if (settings.on_marked_maps && HasSurveyedMarks(m)) settings.observation = *settings.on_marked_maps;
+  settings.observation_for_marked_map = settings.on_marked_maps && HasSurveyedMarks(m);
+  if (settings.observation_for_marked_map) settings.observation = *settings.on_marked_maps;
   settings.on_marked_maps.reset();
   return settings;
 }

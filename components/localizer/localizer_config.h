@@ -38,6 +38,8 @@ struct LocalizerSettings {
   // map whose doors do (Table 6.8), if it differs: ForMap picks one.
   ObservationSettings observation;
   std::optional<ObservationSettings> on_marked_maps;
+  // Set by ForMap: `observation` is the on_marked_maps model.
+  bool observation_for_marked_map = false;
   std::string study_file;
   double publish_rate_hz = 2.0;
   // The probability that a sensed edge is one the error model cannot explain (replaces the
@@ -58,7 +60,7 @@ struct LocalizerSettings {
 bool HasSurveyedMarks(const map::Map& m);
 
 // `settings` with the observation model for `m`: on_marked_maps where it is set and `m` has
-// surveyed marks, the default one otherwise.
+// surveyed marks (then observation_for_marked_map is set), the default one otherwise.
 LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m);
 
 // Reads the `localizer` section; every key required but `on_marked_maps`, unknown keys

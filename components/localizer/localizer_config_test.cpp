@@ -9,22 +9,14 @@
 
 #include "common/config_paths.h"
 #include "common/input_error.h"
+#include "localizer/shipped_settings.h"
 #include "localizer/test_ring.h"
-#include "common/strict_yaml.h"
 #include "stickrep/map_io.h"
 
 namespace stickrep::localizer {
 namespace {
 
 using ::testing::HasSubstr;
-
-std::string Shipped() { return ReadYamlText(DefaultConfigDir() + "/localizer.yaml"); }
-
-LocalizerSettings Load(const std::string& text) {
-  // Named as the shipped file, so the error model files it names resolve.
-  return LoadLocalizerSettings(
-      StrictYaml::LoadString(text, DefaultConfigDir() + "/localizer.yaml").Child("localizer"));
-}
 
 // The shipped text with `extra` inserted as the first line of the on_marked_maps block.
 std::string WithMarkedLine(std::string text, const std::string& extra) {
@@ -66,11 +58,13 @@ TEST(LocalizerSettingsTest, AMarkedMapGetsTheMarkedModelAndAnUnmarkedOneTheDefau
   EXPECT_EQ(on_marked.observation.calibration.slope, marked.calibration.slope);
   EXPECT_EQ(on_marked.observation.calibration.offset, marked.calibration.offset);
   EXPECT_FALSE(on_marked.on_marked_maps.has_value());
+  EXPECT_TRUE(on_marked.observation_for_marked_map);
 
   const LocalizerSettings on_plain = ForMap(shipped, HallWithDoor(""));
   EXPECT_EQ(on_plain.observation.error_model_file, shipped.observation.error_model_file);
   EXPECT_EQ(on_plain.observation.bayes_threshold, shipped.observation.bayes_threshold);
   EXPECT_EQ(on_plain.observation.bayes_false_door_fit, shipped.observation.bayes_false_door_fit);
+  EXPECT_FALSE(on_plain.observation_for_marked_map);
 
   // The model the settings name is the one the Bayes matcher gets.
   const LocalizerConfig config = MakeLocalizerConfig(on_marked, HallWithDoor("old_window"));
@@ -97,8 +91,9 @@ TEST(LocalizerSettingsTest, WithoutTheBlockEveryMapGetsTheDefault) {
   text.erase(at, end + 1 - at);
   const LocalizerSettings s = Load(text);
   EXPECT_FALSE(s.on_marked_maps.has_value());
-  EXPECT_EQ(ForMap(s, HallWithDoor("old_window")).observation.error_model_file,
-            s.observation.error_model_file);
+  const LocalizerSettings on_marked = ForMap(s, HallWithDoor("old_window"));
+  EXPECT_EQ(on_marked.observation.error_model_file, s.observation.error_model_file);
+  EXPECT_FALSE(on_marked.observation_for_marked_map);
 }
 
 TEST(LocalizerSettingsTest, AnUnknownKeyInTheMarkedBlockIsRefusedWithItsPath) {
