@@ -276,8 +276,8 @@ class KidnapBatchTest : public WhereAmITest {
                       {"kidnap_jump_in", std::to_string(jump_in)}});
     EXPECT_TRUE(SpinUntil([&] { return first.has_value(); }, kStepBoundS)) << Outputs();
     if (!first) return k;
-    // A goal ahead of the pose held keeps the robot travelling through and
-    // after the kidnap; a new one when it is reached (on a wrong pose, the robot stops).
+    // A goal ahead of the pose held keeps the robot travelling through and after the kidnap;
+    // a new one when it is reached (on a wrong pose, the robot stops).
     int goals_sent = 0;
     const auto send_goal = [&] {
       msgs::MissionGoal goal;
