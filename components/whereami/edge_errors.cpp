@@ -32,6 +32,11 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
   };
   for (const auto& [width, t] : o.by_width) add(by_width[width], t);
   for (int k = 0; k < map::kDoorClassCount; ++k) add(by_class[k], o.by_class[k]);
+  for (int r = 0; r < 2; ++r) {
+    for (int k = 0; k < map::kDoorClassCount; ++k) add(by_row[r][k], o.by_row[r][k]);
+    walls_by_row[r].walls += o.walls_by_row[r].walls;
+    walls_by_row[r].false_doors += o.walls_by_row[r].false_doors;
+  }
   for (int t = 0; t < map::kDoorMarkCount; ++t) {
     false_mark[t] += o.false_mark[t];
     for (int r = 0; r < map::kDoorMarkCount; ++r) {
@@ -51,6 +56,35 @@ std::optional<recovery::ErrorModel::MarkRow> Shares(const EdgeErrorCounts::MarkC
   recovery::ErrorModel::MarkRow row{};
   for (int k = 0; k < map::kDoorMarkCount; ++k) row[k] = static_cast<double>(n[k]) / sum;
   return row;
+}
+
+// The edge `d` places from edge `k` of `ring` (around a closed ring), or null past an end.
+const map::Edge* EdgeFrom(const map::Ring& ring, int k, int d) {
+  const int n = ring.EdgeCount();
+  int i = k + d;
+  if (ring.closed) i = ((i % n) + n) % n;
+  return i >= 0 && i < n ? &ring.edges[i] : nullptr;
+}
+
+// Whether edge `k` is a wall shorter than EdgeErrorCounts::kRowWallIn between two doors.
+bool ShortWallBetweenDoors(const map::Ring& ring, int k) {
+  const map::Edge& e = ring.edges[k];
+  if (!e.IsWall() || e.metric_in >= EdgeErrorCounts::kRowWallIn) return false;
+  const map::Edge* before = EdgeFrom(ring, k, -1);
+  const map::Edge* after = EdgeFrom(ring, k, +1);
+  return before && after && before->door_class && after->door_class;
+}
+
+// Whether the door at edge `k` has another door beside it or across such a short wall.
+bool DoorInRow(const map::Ring& ring, int k) {
+  for (const int side : {-1, +1}) {
+    const map::Edge* next = EdgeFrom(ring, k, side);
+    if (!next) continue;
+    if (next->door_class) return true;
+    const int wall = ((k + side) % ring.EdgeCount() + ring.EdgeCount()) % ring.EdgeCount();
+    if (ShortWallBetweenDoors(ring, wall)) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -265,12 +299,16 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       ++c.true_doors;
       EdgeErrorCounts::DoorTally& tally = c.by_width[static_cast<int>(std::lround(edge.metric_in))];
       EdgeErrorCounts::DoorTally& of_class = c.by_class[static_cast<int>(*edge.door_class)];
+      EdgeErrorCounts::DoorTally& of_row =
+          c.by_row[DoorInRow(view_ring, passed[p].edge)][static_cast<int>(*edge.door_class)];
       ++tally.passed;
       ++of_class.passed;
+      ++of_row.passed;
       if (it == doors_on.end()) {
         ++c.missed;
         ++tally.missed;
         ++of_class.missed;
+        ++of_row.missed;
         continue;
       }
       const std::size_t first = it->second.front();
@@ -280,11 +318,13 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
         ++c.correct;
         ++tally.correct;
         ++of_class.correct;
+        ++of_row.correct;
         matched[p] = first;
       } else {
         ++c.missized;
         ++tally.missized;
         ++of_class.missized;
+        ++of_row.missized;
         c.missized_to[static_cast<int>(*edge.door_class)][sensed[first].code - 1]++;
         leaf = CountLeafRead(view_ring, sensed, it->second, passed_edges, p, &c);
       }
@@ -311,9 +351,13 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       }
     } else if (edge.IsWall()) {
       ++c.true_walls;
+      EdgeErrorCounts::WallTally& walls =
+          c.walls_by_row[ShortWallBetweenDoors(view_ring, passed[p].edge)];
+      ++walls.walls;
       if (it == doors_on.end()) continue;
       for (std::size_t k : it->second) {
         ++c.false_doors;
+        ++walls.false_doors;
         c.false_class[sensed[k].code - 1]++;
         c.false_mark[static_cast<int>(sensed[k].mark)]++;
       }

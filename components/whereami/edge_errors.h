@@ -48,6 +48,18 @@ struct EdgeErrorCounts {
   std::map<int, DoorTally> by_width;
   // The same by the door's class: the error model's per-class rates.
   std::array<DoorTally, map::kDoorClassCount> by_class{};
+  // Doors in a row and doors alone, by class ([1][class]: a door with another door less
+  // than kRowWallIn of wall away on either side), and the walls shorter than kRowWallIn
+  // between two doors against every other wall ([1]: those short walls), with the false
+  // doors sensed on them. Rows of doors are where the hallway's look changes most from
+  // door to door (panels and pilasters between them, dark leaves); the error model's rates
+  // are the same for every door of a class.
+  static constexpr double kRowWallIn = 60.0;
+  std::array<std::array<DoorTally, map::kDoorClassCount>, 2> by_row{};
+  struct WallTally {
+    long walls = 0, false_doors = 0;
+  };
+  std::array<WallTally, 2> walls_by_row{};
   // How the leaves' marks were read (Table 6.8): [true mark][read mark] over the sensed doors
   // on a true door, sensed with their class and mis-sized (both leaves of a split double
   // door), and the reads of false doors.

@@ -73,6 +73,63 @@ TEST(EdgeErrorsTest, CountsTheMarkReadOfEachTrueDoorAndOfFalseDoors) {
   EXPECT_NO_THROW(recovery::ParseErrorModel(recovery::FormatErrorModelYaml(m, "t"), "t.yaml"));
 }
 
+// W100, D36, W46, D36/36, W46, D36, W100, D36, W100: three doors in a row, one alone.
+TEST(EdgeErrorsTest, TalliesDoorsInARowApartFromDoorsAloneAndTheShortWallsBetweenThem) {
+  map::Ring ring;
+  ring.id = "row";
+  ring.edges = {map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36),
+                map::Edge::Wall(46),  map::Edge::Door(map::DoorClass::k36_36),
+                map::Edge::Wall(46),  map::Edge::Door(map::DoorClass::k36),
+                map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36),
+                map::Edge::Wall(100)};
+  std::vector<double> ends;
+  double at = 0.0;
+  for (const map::Edge& e : ring.edges) ends.push_back(at += e.metric_in);
+  std::vector<TruthSample> truth;
+  for (double odo = 0.0; odo < ends.back(); odo += 1.0) {
+    int edge = 0;
+    while (odo >= ends[edge]) ++edge;
+    truth.push_back({odo, edge});
+  }
+  const map::SymbolCode door36 = map::DoorCode(map::DoorClass::k36);
+  const map::SymbolCode door40 = map::DoorCode(map::DoorClass::k40);
+  // The double door missed (its wall merged into one), a false 40 in door on the first
+  // short wall, the three single doors read right.
+  const std::vector<map::SensedEdge> sensed = {
+      Sensed(map::kWallCode, 100, DoorMark::kUnknown), Sensed(door36, 36, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 2, DoorMark::kUnknown),   Sensed(door40, 40, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 122, DoorMark::kUnknown), Sensed(door36, 36, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 100, DoorMark::kUnknown), Sensed(door36, 36, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 100, DoorMark::kUnknown)};
+  const std::vector<localizer::EdgeAssembler::Span> spans = {{0, 100},   {100, 136}, {136, 138},
+                                                             {138, 178}, {178, 300}, {300, 336},
+                                                             {336, 436}, {436, 472}, {472, 572}};
+  const EdgeErrorCounts c = CompareWithTruth(ring, sensed, spans, truth, 0.0, 572.0);
+  const auto cls = [](map::DoorClass k) { return static_cast<int>(k); };
+  const EdgeErrorCounts::DoorTally& row36 = c.by_row[1][cls(map::DoorClass::k36)];
+  const EdgeErrorCounts::DoorTally& row72 = c.by_row[1][cls(map::DoorClass::k36_36)];
+  const EdgeErrorCounts::DoorTally& alone36 = c.by_row[0][cls(map::DoorClass::k36)];
+  EXPECT_EQ(row36.passed, 2);
+  EXPECT_EQ(row36.correct, 2);
+  EXPECT_EQ(row72.passed, 1);
+  EXPECT_EQ(row72.missed, 1);
+  EXPECT_EQ(alone36.passed, 1);
+  EXPECT_EQ(alone36.correct, 1);
+  EXPECT_EQ(c.by_row[0][cls(map::DoorClass::k36_36)].passed, 0);
+  // The two 46 in walls lie between doors; the 100 in wall between the last two doors is
+  // not short (the first and the last wall are not passed whole).
+  EXPECT_EQ(c.walls_by_row[1].walls, 2);
+  EXPECT_EQ(c.walls_by_row[1].false_doors, 1);
+  EXPECT_EQ(c.walls_by_row[0].walls, 1);
+  EXPECT_EQ(c.walls_by_row[0].false_doors, 0);
+  EXPECT_EQ(c.false_doors, 1);
+  // The tallies add up over runs.
+  EdgeErrorCounts sum = c;
+  sum.Add(c);
+  EXPECT_EQ(sum.by_row[1][cls(map::DoorClass::k36)].correct, 4);
+  EXPECT_EQ(sum.walls_by_row[1].false_doors, 2);
+}
+
 TEST(EdgeErrorsTest, RunsWithoutAnyDoorGiveNoMarkRows) {
   EXPECT_FALSE(EdgeErrorCounts{}.ToModel("empty").HasMarks());
 }

@@ -130,6 +130,36 @@ int TallyMeasuredRuns(const RunSetup& setup, const ToolOptions& options, std::os
   return failed;
 }
 
+// Doors alone and in a row, by class, and the false doors on the short walls between doors
+// against the other walls (EdgeErrorCounts::by_row, walls_by_row).
+void PrintRowTallies(const EdgeErrorCounts& total, std::ostream& out) {
+  const auto rates = [](const EdgeErrorCounts::DoorTally& t) {
+    return fmt::format("{:>4} {:>4} {:>4} {:>4} ({:>3.0f} % missed)", t.passed, t.correct,
+                       t.missized, t.missed, 100.0 * t.missed / std::max<long>(1, t.passed));
+  };
+  out << fmt::format(
+      "  by class, doors alone and in a row (another door beside it or under {:g} "
+      "in of wall away): passed, with their class, mis-sized, missed\n",
+      EdgeErrorCounts::kRowWallIn);
+  for (int k = 0; k < map::kDoorClassCount; ++k) {
+    const EdgeErrorCounts::DoorTally& alone = total.by_row[0][k];
+    const EdgeErrorCounts::DoorTally& row = total.by_row[1][k];
+    if (alone.passed + row.passed == 0) continue;
+    out << fmt::format("    {:>5}  alone {}   in a row {}\n",
+                       map::DoorClassName(static_cast<map::DoorClass>(k)), rates(alone),
+                       rates(row));
+  }
+  const auto per_wall = [](const EdgeErrorCounts::WallTally& w) {
+    return fmt::format("{:.1f} % ({} on {} walls)",
+                       100.0 * w.false_doors / std::max<long>(1, w.walls), w.false_doors, w.walls);
+  };
+  out << fmt::format(
+      "  false doors per true wall: on walls under {:g} in between two doors {}; "
+      "on the other walls {}\n",
+      EdgeErrorCounts::kRowWallIn, per_wall(total.walls_by_row[1]),
+      per_wall(total.walls_by_row[0]));
+}
+
 // How the leaves' marks (Table 6.8) were read: counts, true mark by row, false doors last.
 void PrintMarkReads(const EdgeErrorCounts& total, std::ostream& out) {
   out << "  door marks read (Table 6.8), sensed doors:  unknown    plain   window   poster\n";
@@ -178,6 +208,7 @@ void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts
                        t.correct, t.missized, t.missed,
                        100.0 * t.missed / std::max<long>(1, t.passed));
   }
+  PrintRowTallies(total, out);
   const long one_leaf = total.leaf_reads - total.leaf_split;
   out << fmt::format("  doors read narrower by >= {:g} in (a double door's leaf): {}; the other "
                      "leaf as a second door {} ({} after a sliver of wall, median {:.1f} in); "
