@@ -273,6 +273,13 @@ void CountWallErrors(const map::Ring& view_ring, const std::vector<map::SensedEd
   }
 }
 
+// One false door: its class and the mark read on it.
+void AddFalseDoor(const map::SensedEdge& e, EdgeErrorCounts* c) {
+  ++c->false_doors;
+  c->false_class[e.code - 1]++;
+  c->false_mark[static_cast<int>(e.mark)]++;
+}
+
 }  // namespace
 
 EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
@@ -297,18 +304,18 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
     const auto it = doors_on.find(static_cast<int>(p));
     if (edge.door_class) {
       ++c.true_doors;
-      EdgeErrorCounts::DoorTally& tally = c.by_width[static_cast<int>(std::lround(edge.metric_in))];
-      EdgeErrorCounts::DoorTally& of_class = c.by_class[static_cast<int>(*edge.door_class)];
-      EdgeErrorCounts::DoorTally& of_row =
-          c.by_row[DoorInRow(view_ring, passed[p].edge)][static_cast<int>(*edge.door_class)];
-      ++tally.passed;
-      ++of_class.passed;
-      ++of_row.passed;
+      using Tally = EdgeErrorCounts::DoorTally;
+      const int cls = static_cast<int>(*edge.door_class);
+      Tally* const tallies[] = {&c.by_width[static_cast<int>(std::lround(edge.metric_in))],
+                                &c.by_class[cls],
+                                &c.by_row[DoorInRow(view_ring, passed[p].edge)][cls]};
+      const auto count = [&tallies](long Tally::*field) {
+        for (Tally* t : tallies) ++(t->*field);
+      };
+      count(&Tally::passed);
       if (it == doors_on.end()) {
         ++c.missed;
-        ++tally.missed;
-        ++of_class.missed;
-        ++of_row.missed;
+        count(&Tally::missed);
         continue;
       }
       const std::size_t first = it->second.front();
@@ -316,16 +323,12 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       const map::SymbolCode want = map::DoorCode(*edge.door_class);
       if (sensed[first].code == want) {
         ++c.correct;
-        ++tally.correct;
-        ++of_class.correct;
-        ++of_row.correct;
+        count(&Tally::correct);
         matched[p] = first;
       } else {
         ++c.missized;
-        ++tally.missized;
-        ++of_class.missized;
-        ++of_row.missized;
-        c.missized_to[static_cast<int>(*edge.door_class)][sensed[first].code - 1]++;
+        count(&Tally::missized);
+        c.missized_to[cls][sensed[first].code - 1]++;
         leaf = CountLeafRead(view_ring, sensed, it->second, passed_edges, p, &c);
       }
       // A door the map gives no mark for is left out of the mark counts: what the renderer
@@ -345,9 +348,7 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
           }
           continue;
         }
-        ++c.false_doors;
-        c.false_class[other.code - 1]++;
-        c.false_mark[static_cast<int>(other.mark)]++;
+        AddFalseDoor(other, &c);
       }
     } else if (edge.IsWall()) {
       ++c.true_walls;
@@ -356,10 +357,8 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       ++walls.walls;
       if (it == doors_on.end()) continue;
       for (std::size_t k : it->second) {
-        ++c.false_doors;
         ++walls.false_doors;
-        c.false_class[sensed[k].code - 1]++;
-        c.false_mark[static_cast<int>(sensed[k].mark)]++;
+        AddFalseDoor(sensed[k], &c);
       }
     }
   }
