@@ -58,31 +58,32 @@ std::optional<recovery::ErrorModel::MarkRow> Shares(const EdgeErrorCounts::MarkC
   return row;
 }
 
-// The edge `d` places from edge `k` of `ring` (around a closed ring), or null past an end.
-const map::Edge* EdgeFrom(const map::Ring& ring, int k, int d) {
+// The index of the edge `d` places from edge `k` of `ring` (around a closed ring), or -1
+// past an end.
+int EdgeFrom(const map::Ring& ring, int k, int d) {
   const int n = ring.EdgeCount();
   int i = k + d;
   if (ring.closed) i = ((i % n) + n) % n;
-  return i >= 0 && i < n ? &ring.edges[i] : nullptr;
+  return i >= 0 && i < n ? i : -1;
+}
+
+bool IsDoorAt(const map::Ring& ring, int i) {
+  return i >= 0 && ring.edges[i].door_class.has_value();
 }
 
 // Whether edge `k` is a wall shorter than EdgeErrorCounts::kRowWallIn between two doors.
 bool ShortWallBetweenDoors(const map::Ring& ring, int k) {
   const map::Edge& e = ring.edges[k];
   if (!e.IsWall() || e.metric_in >= EdgeErrorCounts::kRowWallIn) return false;
-  const map::Edge* before = EdgeFrom(ring, k, -1);
-  const map::Edge* after = EdgeFrom(ring, k, +1);
-  return before && after && before->door_class && after->door_class;
+  return IsDoorAt(ring, EdgeFrom(ring, k, -1)) && IsDoorAt(ring, EdgeFrom(ring, k, +1));
 }
 
 // Whether the door at edge `k` has another door beside it or across such a short wall.
 bool DoorInRow(const map::Ring& ring, int k) {
   for (const int side : {-1, +1}) {
-    const map::Edge* next = EdgeFrom(ring, k, side);
-    if (!next) continue;
-    if (next->door_class) return true;
-    const int wall = ((k + side) % ring.EdgeCount() + ring.EdgeCount()) % ring.EdgeCount();
-    if (ShortWallBetweenDoors(ring, wall)) return true;
+    const int next = EdgeFrom(ring, k, side);
+    if (next < 0) continue;
+    if (IsDoorAt(ring, next) || ShortWallBetweenDoors(ring, next)) return true;
   }
   return false;
 }

@@ -29,15 +29,24 @@ map::SensedEdge Sensed(map::SymbolCode code, double metric_in, DoorMark mark) {
   return e;
 }
 
-TEST(EdgeErrorsTest, CountsTheMarkReadOfEachTrueDoorAndOfFalseDoors) {
-  const map::Ring ring = MarkedRing();
+// The robot's passage along the whole ring from its start, one reading per inch: the edge
+// the optical axis is on at each.
+std::vector<TruthSample> TruthEveryInch(const map::Ring& ring) {
+  std::vector<double> ends;
+  double at = 0.0;
+  for (const map::Edge& e : ring.edges) ends.push_back(at += e.metric_in);
   std::vector<TruthSample> truth;
-  const double ends[] = {100, 136, 236, 272, 372};
-  for (double odo = 0.0; odo <= 371.0; odo += 1.0) {
+  for (double odo = 0.0; odo < ends.back(); odo += 1.0) {
     int edge = 0;
     while (odo >= ends[edge]) ++edge;
     truth.push_back({odo, edge});
   }
+  return truth;
+}
+
+TEST(EdgeErrorsTest, CountsTheMarkReadOfEachTrueDoorAndOfFalseDoors) {
+  const map::Ring ring = MarkedRing();
+  const std::vector<TruthSample> truth = TruthEveryInch(ring);
   const map::SymbolCode door36 = map::DoorCode(map::DoorClass::k36);
   const map::SymbolCode door40 = map::DoorCode(map::DoorClass::k40);
   // The poster read, a false door read plain in the middle wall, the window door read as a
@@ -82,15 +91,7 @@ TEST(EdgeErrorsTest, TalliesDoorsInARowApartFromDoorsAloneAndTheShortWallsBetwee
                 map::Edge::Wall(46),  map::Edge::Door(map::DoorClass::k36),
                 map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36),
                 map::Edge::Wall(100)};
-  std::vector<double> ends;
-  double at = 0.0;
-  for (const map::Edge& e : ring.edges) ends.push_back(at += e.metric_in);
-  std::vector<TruthSample> truth;
-  for (double odo = 0.0; odo < ends.back(); odo += 1.0) {
-    int edge = 0;
-    while (odo >= ends[edge]) ++edge;
-    truth.push_back({odo, edge});
-  }
+  const std::vector<TruthSample> truth = TruthEveryInch(ring);
   const map::SymbolCode door36 = map::DoorCode(map::DoorClass::k36);
   const map::SymbolCode door40 = map::DoorCode(map::DoorClass::k40);
   // The double door missed (its wall merged into one), a false 40 in door on the first
