@@ -135,7 +135,11 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
 }
 
 double BayesLocalizer::Missed(int door) const {
-  return model_.confusion.class_missed[index_.code(door) - 1];
+  return model_.confusion.Missed(index_.code(door) - 1, index_.in_row(door));
+}
+
+double BayesLocalizer::FalseDoorAt(int wall) const {
+  return model_.confusion.FalseDoor(index_.in_row(wall));
 }
 
 double BayesLocalizer::WallDensity(double measured, double true_len) const {
@@ -218,14 +222,15 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
     if (door) {
       if (map::IsDoorCode(code)) {
         const int k = code - 1, c = e.code - 1;
-        pn = prior * (k == c ? cf.class_correct[k] : cf.class_missized[k] * cf.missized_to[k][c]);
+        const bool row = index_.in_row(g);
+        pn = prior * (k == c ? cf.Correct(k, row) : cf.Missized(k, row) * cf.missized_to[k][c]);
       } else if (code == map::kWallCode && len > ClassWidth(e.code)) {
         // The robot starts beside a false door in a wall.
-        pi2 = cf.false_door * cf.false_class[e.code - 1] * ClassWidth(e.code) / total_length_in_;
+        pi2 = FalseDoorAt(g) * cf.false_class[e.code - 1] * ClassWidth(e.code) / total_length_in_;
       }
     } else if (code == e.code) {
       const bool wall = code == map::kWallCode;
-      const double clean = wall ? 1.0 - cf.false_door : 1.0;
+      const double clean = wall ? 1.0 - FalseDoorAt(g) : 1.0;
       if (e.metric_is_lower_bound) {
         // The part seen from a uniform start point: density 1/len for any length up to len.
         const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len));
@@ -234,7 +239,7 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
         pn = clean * fit / total_length_in_;
         // ... or the part up to a false door ahead in the same wall.
         if (wall) {
-          pi1 = cf.false_door * 0.5 * fit * RoomForFalseDoor(len, e.metric_in) / total_length_in_;
+          pi1 = FalseDoorAt(g) * 0.5 * fit * RoomForFalseDoor(len, e.metric_in) / total_length_in_;
         }
         if (wall) {
           // ... or it began in an earlier wall or door and ran over missed doors into this
@@ -266,7 +271,6 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
 
 double BayesLocalizer::PriorOverMissedDoors(int g, int dir, double sigma,
                                             const map::SensedEdge& e) const {
-  const Confusion& cf = model_.confusion;
   const double len = index_.metric(g);
   double chain = len, p = 1.0;
   int cur = g;
@@ -284,7 +288,7 @@ double BayesLocalizer::PriorOverMissedDoors(int g, int dir, double sigma,
     if (w < 0 || index_.code(w) != map::kWallCode) break;
     const double a_w = dir > 0 ? index_.angle_end(w) : index_.angle_start(w);
     if (!Coplanar(a_w)) break;
-    p *= 1.0 - cf.false_door;
+    p *= 1.0 - FalseDoorAt(w);
     chain += index_.metric(w);
     if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
     cur = w;
@@ -345,7 +349,6 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
 
 void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e,
                                  double* leaving) {
-  const Confusion& cf = model_.confusion;
   const double eps = model_.settings.outlier;
   const bool door = map::IsDoorCode(e.code);
   const bool wall = e.code == map::kWallCode;
@@ -370,7 +373,7 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
     if (w >= 0 && index_.code(w) == map::kWallCode) {
       const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
       if (Coplanar(a_out)) {
-        nn_[State(w, dir)] += pn * angle * Missed(n1) * (1.0 - cf.false_door) *
+        nn_[State(w, dir)] += pn * angle * Missed(n1) * (1.0 - FalseDoorAt(w)) *
                               WallDensity(e.metric_in, d + index_.metric(w));
       }
     }
@@ -383,7 +386,7 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
 
 void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
                                      const map::SensedEdge& e) {
-  const double pf = model_.confusion.false_door;
+  const double pf = FalseDoorAt(n1);
   const int s1 = State(n1, dir);
   const double len1 = index_.metric(n1);
   nn_[s1] += pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1);
@@ -415,17 +418,19 @@ double BayesLocalizer::LeafDeficit(int k, int c) {
          map::DoorClassWidthIn(static_cast<map::DoorClass>(c));
 }
 
-double BayesLocalizer::LeafRead(int k, int c) const {
+double BayesLocalizer::LeafRead(int door, int c) const {
+  const int k = index_.code(door) - 1;
   if (LeafDeficit(k, c) < kLeafDeficitIn) return 0.0;
   const Confusion& cf = model_.confusion;
-  return cf.class_missized[k] * cf.missized_to[k][c];
+  return cf.Missized(k, index_.in_row(door)) * cf.missized_to[k][c];
 }
 
-double BayesLocalizer::LeafWallWeight(int k, int c, double wall_in, double len) const {
+double BayesLocalizer::LeafWallWeight(int door, int c, double wall_in, double len) const {
+  const int k = index_.code(door) - 1;
   double sum = 0.0;
   for (int leaf = 0; leaf < kDoorClasses; ++leaf) {
     if (c >= 0 && leaf != c) continue;
-    const double p = LeafRead(k, leaf);
+    const double p = LeafRead(door, leaf);
     if (p > 0.0) sum += p * WallDensity(wall_in, len + LeafDeficit(k, leaf));
   }
   return sum;
@@ -436,10 +441,11 @@ void BayesLocalizer::NextLeafFromEnd(int n1, int dir, double pn, double angle,
   const Confusion& cf = model_.confusion;
   const int s1 = State(n1, dir);
   const int k = index_.code(n1) - 1, c = e.code - 1;
-  const double pc = k == c ? cf.class_correct[k] : cf.class_missized[k] * cf.missized_to[k][c];
+  const bool row = index_.in_row(n1);
+  const double pc = k == c ? cf.Correct(k, row) : cf.Missized(k, row) * cf.missized_to[k][c];
   // A read as one leaf: the rest of the door as a second door next (S1), in the wall after
   // (T), or nowhere; the share of it that was in the wall before came through H instead.
-  const double leaf = LeafRead(k, c);
+  const double leaf = LeafRead(n1, c);
   const double rest = 1.0 - cf.leaf_split - cf.leaf_before - cf.leaf_after;
   nn_[s1] += pn * angle * (pc - leaf + leaf * rest);
   if (leaf > 0.0) {
@@ -456,8 +462,8 @@ void BayesLocalizer::NextWallBeforeLeaf(int n1, int dir, double pn, double angle
   if (n2 < 0 || !map::IsDoorCode(index_.code(n2))) return;
   const double a_in = dir > 0 ? index_.angle_start(n2) : index_.angle_end(n2);
   if (!Coplanar(a_in)) return;
-  const double w = LeafWallWeight(index_.code(n2) - 1, -1, e.metric_in, index_.metric(n1));
-  nh_[State(n2, dir)] += pn * angle * (1.0 - cf.false_door) * cf.leaf_before * w;
+  const double w = LeafWallWeight(n2, -1, e.metric_in, index_.metric(n1));
+  nh_[State(n2, dir)] += pn * angle * (1.0 - FalseDoorAt(n1)) * cf.leaf_before * w;
 }
 
 void BayesLocalizer::NextFromLeafPhases(int s, const map::SensedEdge& e) {
@@ -477,9 +483,9 @@ void BayesLocalizer::NextFromLeafPhases(int s, const map::SensedEdge& e) {
       // The leaf after the wall that held the first one: its class given that wall.
       const int before = index_.Step(d, -dir);
       const double len = before >= 0 ? index_.metric(before) : 0.0;
-      const double all = LeafWallWeight(k, -1, last_.metric_in, len);
+      const double all = LeafWallWeight(d, -1, last_.metric_in, len);
       if (all > 0.0) {
-        nn_[s] += h_[s] * flat * LeafWallWeight(k, e.code - 1, last_.metric_in, len) / all;
+        nn_[s] += h_[s] * flat * LeafWallWeight(d, e.code - 1, last_.metric_in, len) / all;
       }
     }
     return;
@@ -493,7 +499,7 @@ void BayesLocalizer::NextFromLeafPhases(int s, const map::SensedEdge& e) {
   if (t_[s] > 0.0 && w >= 0 && index_.code(w) == map::kWallCode) {
     const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
     if (Coplanar(a_out)) {
-      nn_[State(w, dir)] += t_[s] * flat * (1.0 - cf.false_door) *
+      nn_[State(w, dir)] += t_[s] * flat * (1.0 - FalseDoorAt(w)) *
                             WallDensity(e.metric_in, index_.metric(w) + deficit);
     }
   }
@@ -509,10 +515,8 @@ double BayesLocalizer::Mass(int s) const {
 
 void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double angle,
                                              const map::SensedEdge& e) {
-  const Confusion& cf = model_.confusion;
-  const double pf = cf.false_door;
   // One sensed wall over missed doors on a flat wall: wall, door, wall, ...
-  double total = index_.metric(n1), p = (1.0 - pf);
+  double total = index_.metric(n1), p = (1.0 - FalseDoorAt(n1));
   int cur = n1;
   for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
     const int d = index_.Step(cur, dir);
@@ -527,8 +531,8 @@ void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double 
     if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
       // ... ending in the first part of a wall that holds a false door.
       const int sw = State(w, dir);
-      const double add =
-          pn * angle * p * Missed(d) * pf / len_w * RoomForFalseDoor(len_w, e.metric_in - before_w);
+      const double add = pn * angle * p * Missed(d) * FalseDoorAt(w) / len_w *
+                         RoomForFalseDoor(len_w, e.metric_in - before_w);
       if (add > ni1_[sw]) {
         nc1_[sw] = e.metric_in - before_w;
         nlb1_[sw] = 0;
@@ -536,7 +540,7 @@ void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double 
       ni1_[sw] += add;
     }
     total = before_w + len_w;
-    p *= Missed(d) * (1.0 - pf);
+    p *= Missed(d) * (1.0 - FalseDoorAt(w));
     nn_[State(w, dir)] += pn * angle * p * WallDensity(e.metric_in, total);
     cur = w;
   }

@@ -107,6 +107,8 @@ class BayesLocalizer {
   double WallDensity(double measured, double true_len) const;
   // The probability that map door `door` is missed (its class's rate).
   double Missed(int door) const;
+  // The false-door rate of map wall `wall` (in a row of doors or not).
+  double FalseDoorAt(int wall) const;
   void First(const map::SensedEdge& e);
   // Weighs the belief after a sensed door by how its leaf's mark was read at each map edge
   // (Confusion::MarkLikelihood); nothing when the model has no marks.
@@ -127,13 +129,13 @@ class BayesLocalizer {
   void NextLeafFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
   void NextWallBeforeLeaf(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
   void NextFromLeafPhases(int s, const map::SensedEdge& e);
-  // The probability that a door of class k is read as class c, one leaf of it (0 when c is
-  // not kLeafDeficitIn narrower), and the rest of its width then.
-  double LeafRead(int k, int c) const;
+  // The probability that map door `door` (class k) is read as class c, one leaf of it (0
+  // when c is not kLeafDeficitIn narrower), and the rest of its width then.
+  double LeafRead(int door, int c) const;
   static double LeafDeficit(int k, int c);
   // For H(d): the weight of the wall sensed before d (length `wall_in`, the map's `len`)
-  // having held a leaf of class c of d's class k, summed over c when c < 0.
-  double LeafWallWeight(int k, int c, double wall_in, double len) const;
+  // having held a leaf of class c of door d, summed over c when c < 0.
+  double LeafWallWeight(int door, int c, double wall_in, double len) const;
   void NextFromFirstPart(int s, double p1, const map::SensedEdge& e);
   void NextFromSecondPart(int s, double p2, const map::SensedEdge& e);
   // A wall's first part W1 is taken uniform over the whole wall; the ribbon of a false door

@@ -362,6 +362,60 @@ TEST_F(BayesLocalizerOpenEndTest, TheLastWallBeforeAnOpenEndMayRunOnOutThroughIt
   EXPECT_EQ(b.best().dir, +1);
 }
 
+// Two places that read alike when a door is missed: a row of two 36 in doors 40 in apart
+// (edges 1-3), whose second door missed leaves W40 + D36 + W200 = 276 in of wall, and a 36
+// in door alone before a 276 in wall (edges 7-8):
+//   | 0 W120 1 D36 2 W40 3 D36 4 W200 5 D32 | 6 W120 7 D36 8 W276 9 D32 | 10 W500
+// (nodes 0, 6 and 10, marked |, are 90 deg corners; the rest 180 deg).
+map::Map CorridorWithARowOfDoors() {
+  using map::Edge;
+  map::Ring ring;
+  ring.id = "corridor";
+  ring.closed = true;
+  ring.edges = {
+      Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(40),  Edge::Door(DoorClass::k36),
+      Edge::Wall(200), Edge::Door(DoorClass::k32), Edge::Wall(120), Edge::Door(DoorClass::k36),
+      Edge::Wall(276), Edge::Door(DoorClass::k32), Edge::Wall(500)};
+  for (std::size_t i = 0; i < ring.edges.size(); ++i) {
+    map::Node n;
+    n.angle_deg = (i == 0 || i == 6 || i == 10) ? 90.0 : 180.0;
+    ring.nodes.push_back(n);
+  }
+  map::MapInfo info;
+  info.name = "corridor";
+  return map::Map(info, {ring});
+}
+
+TEST(BayesLocalizerRowTest, ADoorMissedInARowWeighsAsTheModelsRowsMissThem) {
+  const map::Map map = CorridorWithARowOfDoors();
+  const map::MatchIndex index(map);
+  ASSERT_TRUE(index.in_row(1) && index.in_row(2) && index.in_row(3));
+  ASSERT_FALSE(index.in_row(5) || index.in_row(7) || index.in_row(8));
+  // The belief in the row (the second door missed, ending on door 5) over the belief in the
+  // door alone (read as it is, ending on door 9), after the walk from a corner.
+  const auto ratio = [&](const ErrorModel& em) {
+    BayesLocalizer b = MakeLocalizer(index, em);
+    for (const map::SensedEdge& e :
+         {Wall(120), Door(DoorClass::k36), Wall(276), Door(DoorClass::k32)}) {
+      b.Add(e);
+    }
+    return b.PoseProbability(5, +1) / b.PoseProbability(9, +1);
+  };
+  ErrorModel alone = ErrorModel::Paper();
+  alone.by_class[DoorClass::k36] = {0.90, 0.04, 0.06};
+  ErrorModel rows = alone;
+  rows.in_row = ErrorModel::InRow{};
+  rows.in_row->by_class[DoorClass::k36] = {0.38, 0.02, 0.60};
+  rows.Validate();
+  // Without the rows' rates: the row's first door read right and its second missed against
+  // the lone door read right, 0.06; with them, 0.38 x 0.60 / 0.90. The rest of both walks
+  // (the walls, the 32 in door alone) weighs alike.
+  const double before = ratio(alone), after = ratio(rows);
+  EXPECT_NEAR(after / before, (0.38 * 0.60 / 0.90) / 0.06, 0.05 * (0.38 * 0.60 / 0.90) / 0.06);
+  EXPECT_LT(before, 0.1);
+  EXPECT_GT(after, 0.2);
+}
+
 // A corridor with a 36/36 double door (edge 1), and a single 36 in door (edge 6) where a
 // read of the double door's second leaf, with the first in the wall before it, fits exactly:
 //   0 W120 1 D36/36 2 W80 3 D40 4 W150 | 5 W156 6 D36 7 W80 8 D40 9 W200 |

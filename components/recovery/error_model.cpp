@@ -70,6 +70,22 @@ ErrorModel ErrorModel::None() {
   return m;
 }
 
+// Each class's rates are probabilities that sum to 1; `prefix` names the key.
+static void ValidateClassRates(const std::map<DoorClass, ErrorModel::DoorRates>& rates,
+                               const std::string& prefix) {
+  for (const auto& [c, r] : rates) {
+    const std::string key = prefix + map::DoorClassName(c);
+    RequireProbability(r.correct, key + ".correct");
+    RequireProbability(r.missized, key + ".missized");
+    RequireProbability(r.missed, key + ".missed");
+    const double rs = r.correct + r.missized + r.missed;
+    if (std::abs(rs - 1.0) > kSumTolerance) {
+      throw std::invalid_argument(key + ": correct + missized + missed = " + Num(rs) +
+                                  ", must be 1 within " + Num(kSumTolerance));
+    }
+  }
+}
+
 void ErrorModel::Validate() const {
   RequireProbability(door_correct, "door_correct");
   RequireProbability(door_missized, "door_missized");
@@ -103,16 +119,11 @@ void ErrorModel::Validate() const {
   if (!false_door_classes.empty() && std::abs(s - 1.0) > kSumTolerance) {
     throw std::invalid_argument("false_door_classes sums to " + Num(s) + ", not 1");
   }
-  for (const auto& [c, r] : by_class) {
-    const std::string key = std::string("by_class.") + map::DoorClassName(c);
-    RequireProbability(r.correct, key + ".correct");
-    RequireProbability(r.missized, key + ".missized");
-    RequireProbability(r.missed, key + ".missed");
-    const double rs = r.correct + r.missized + r.missed;
-    if (std::abs(rs - 1.0) > kSumTolerance) {
-      throw std::invalid_argument(key + ": correct + missized + missed = " + Num(rs) +
-                                  ", must be 1 within " + Num(kSumTolerance));
-    }
+  ValidateClassRates(by_class, "by_class.");
+  if (in_row) {
+    if (in_row->wall_false_door)
+      RequireProbability(*in_row->wall_false_door, "in_row.wall_false_door");
+    ValidateClassRates(in_row->by_class, "in_row.by_class.");
   }
   RequireProbability(leaf_split, "leaf_split");
   RequireProbability(leaf_sliver, "leaf_sliver");
@@ -123,6 +134,32 @@ void ErrorModel::Validate() const {
     throw std::invalid_argument("leaf_split + leaf_wall_before + leaf_wall_after = " + Num(leaf) +
                                 ", more than 1");
   }
+}
+
+// The per-class rates under `key` of `node`: door class -> {correct, missized, missed},
+// each summing to 1.
+static std::map<DoorClass, ErrorModel::DoorRates> ReadClassRates(const StrictYaml& node,
+                                                                 const std::string& key) {
+  const StrictYaml bc = node.Child(key);
+  if (!bc.IsMap()) node.Fail(key, "expected a mapping of door class to rates");
+  std::map<DoorClass, ErrorModel::DoorRates> rates;
+  for (const std::string& name : bc.Keys()) {
+    const DoorClass c = ClassKey(bc, name);
+    const StrictYaml row = bc.Child(name);
+    ErrorModel::DoorRates r;
+    r.correct = row.Get<double>("correct", 0.0, 1.0);
+    r.missized = row.Get<double>("missized", 0.0, 1.0);
+    r.missed = row.Get<double>("missed", 0.0, 1.0);
+    const double rs = r.correct + r.missized + r.missed;
+    if (std::abs(rs - 1.0) > kSumTolerance) {
+      row.Fail("missed", "correct + missized + missed = " + Num(rs) + ", must be 1 within " +
+                             Num(kSumTolerance));
+    }
+    row.Finish();
+    rates[c] = r;
+  }
+  bc.Finish();
+  return rates;
 }
 
 // The optional leaf_* shares (each 0 when absent): each a probability, the three places the
@@ -224,25 +261,16 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
   if (node.Has("false_door_classes")) {
     m.false_door_classes = ReadDistribution(node.Child("false_door_classes"));
   }
-  if (node.Has("by_class")) {
-    const StrictYaml bc = node.Child("by_class");
-    if (!bc.IsMap()) node.Fail("by_class", "expected a mapping of door class to rates");
-    for (const std::string& key : bc.Keys()) {
-      const DoorClass c = ClassKey(bc, key);
-      const StrictYaml row = bc.Child(key);
-      ErrorModel::DoorRates r;
-      r.correct = row.Get<double>("correct", 0.0, 1.0);
-      r.missized = row.Get<double>("missized", 0.0, 1.0);
-      r.missed = row.Get<double>("missed", 0.0, 1.0);
-      const double rs = r.correct + r.missized + r.missed;
-      if (std::abs(rs - 1.0) > kSumTolerance) {
-        row.Fail("missed", "correct + missized + missed = " + Num(rs) + ", must be 1 within " +
-                               Num(kSumTolerance));
-      }
-      row.Finish();
-      m.by_class[c] = r;
-    }
-    bc.Finish();
+  if (node.Has("by_class")) m.by_class = ReadClassRates(node, "by_class");
+  if (node.Has("in_row")) {
+    const StrictYaml row = node.Child("in_row");
+    if (!row.IsMap()) node.Fail("in_row", "expected a mapping with wall_false_door and by_class");
+    ErrorModel::InRow in_row;
+    if (row.Has("wall_false_door"))
+      in_row.wall_false_door = row.Get<double>("wall_false_door", 0.0, 1.0);
+    if (row.Has("by_class")) in_row.by_class = ReadClassRates(row, "by_class");
+    row.Finish();
+    m.in_row = in_row;
   }
   ReadLeafShares(node, &m);
   ReadMarks(node, &m);
@@ -307,12 +335,24 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   c.missized = model.door_missized;
   c.missed = model.door_missed;
   c.false_door = model.wall_false_door;
+  c.row_false_door = c.false_door;
+  if (model.in_row && model.in_row->wall_false_door)
+    c.row_false_door = *model.in_row->wall_false_door;
   for (int k = 0; k < kDoorClasses; ++k) {
     const auto it = model.by_class.find(static_cast<DoorClass>(k));
     const bool own = it != model.by_class.end();
     c.class_correct[k] = own ? it->second.correct : c.correct;
     c.class_missized[k] = own ? it->second.missized : c.missized;
     c.class_missed[k] = own ? it->second.missed : c.missed;
+    c.row_correct[k] = c.class_correct[k];
+    c.row_missized[k] = c.class_missized[k];
+    c.row_missed[k] = c.class_missed[k];
+    if (!model.in_row) continue;
+    const auto row = model.in_row->by_class.find(static_cast<DoorClass>(k));
+    if (row == model.in_row->by_class.end()) continue;
+    c.row_correct[k] = row->second.correct;
+    c.row_missized[k] = row->second.missized;
+    c.row_missed[k] = row->second.missed;
   }
   c.leaf_split = model.leaf_split;
   c.leaf_sliver = model.leaf_sliver;
@@ -564,12 +604,23 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
   }
   out += "  missized_to: " + missized + "}\n";
   out += "  false_door_classes: " + distribution(m.false_door_classes) + "\n";
-  if (!m.by_class.empty()) {
-    out += "  by_class:\n";
-    for (const auto& [c, r] : m.by_class) {
-      out += "    \"" + std::string(map::DoorClassName(c)) + "\": {correct: " + number(r.correct) +
-             ", missized: " + number(r.missized) + ", missed: " + number(r.missed) + "}\n";
+  const auto class_rates = [&](const std::map<DoorClass, ErrorModel::DoorRates>& rates,
+                               const std::string& indent) {
+    if (rates.empty()) return;
+    out += indent + "by_class:\n";
+    for (const auto& [c, r] : rates) {
+      out += indent + "  \"" + std::string(map::DoorClassName(c)) +
+             "\": {correct: " + number(r.correct) + ", missized: " + number(r.missized) +
+             ", missed: " + number(r.missed) + "}\n";
     }
+  };
+  class_rates(m.by_class, "  ");
+  if (m.in_row) {
+    out += "  in_row:\n";
+    if (m.in_row->wall_false_door) {
+      out += "    wall_false_door: " + number(*m.in_row->wall_false_door) + "\n";
+    }
+    class_rates(m.in_row->by_class, "    ");
   }
   if (m.leaf_split > 0.0 || m.leaf_sliver > 0.0 || m.leaf_wall_before > 0.0 ||
       m.leaf_wall_after > 0.0) {

@@ -46,6 +46,17 @@ struct ErrorModel {
     double correct = 0, missized = 0, missed = 0;
   };
   std::map<map::DoorClass, DoorRates> by_class;
+  // Doors in a row and the walls under map::kRowWallIn between two doors (map::InDoorRow):
+  // their own rates where the file gives them (per class, each summing to 1; a class not
+  // listed keeps its rates above, as does a missing false-door rate). With it, the rates
+  // above are those of the doors alone and of the other walls. Rows of doors are where the
+  // pipeline's errors come together (a double door between two panels read leaf by leaf,
+  // a false door on the panel between two casings).
+  struct InRow {
+    std::optional<double> wall_false_door;
+    std::map<map::DoorClass, DoorRates> by_class;
+  };
+  std::optional<InRow> in_row;
   // Per true class, where its mis-sized sightings go (sensed class -> probability). A class
   // not listed goes to its neighbouring classes equally (DefaultMissizedTargets).
   std::map<map::DoorClass, std::map<map::DoorClass, double>> missized_to;
@@ -101,6 +112,16 @@ struct Confusion {
   double correct = 0, missized = 0, missed = 0, false_door = 0;
   // Per true class: ErrorModel::by_class, or the rates above.
   ClassVector class_correct{}, class_missized{}, class_missed{};
+  // The same for doors in a row, and the false doors of a wall between two doors of a row
+  // (ErrorModel::in_row; the rates above where the model has none).
+  ClassVector row_correct{}, row_missized{}, row_missed{};
+  double row_false_door = 0;
+  // The rates of a map door of class index `k`, in a row or not (MatchIndex::in_row).
+  double Correct(int k, bool row) const { return row ? row_correct[k] : class_correct[k]; }
+  double Missized(int k, bool row) const { return row ? row_missized[k] : class_missized[k]; }
+  double Missed(int k, bool row) const { return row ? row_missed[k] : class_missed[k]; }
+  // The false-door rate of a map wall, between two doors of a row or not.
+  double FalseDoor(bool row) const { return row ? row_false_door : false_door; }
   ClassMatrix missized_to{};  // [true][sensed], each row sums to 1
   ClassVector false_class{};  // sums to 1
   ClassVector map_prior{};    // the map's door-class frequencies (sum 1, or all 0)

@@ -111,6 +111,54 @@ TEST(ErrorModelFile, ReadsPerClassRatesAndLeafShares) {
   EXPECT_DOUBLE_EQ(back.leaf_split, 0.6);
 }
 
+TEST(ErrorModelFile, ReadsTheRatesOfDoorsInARow) {
+  const ErrorModel m =
+      ParseErrorModel(Model("  by_class:\n"
+                            "    \"36/36\": {correct: 0.5, missized: 0.45, missed: 0.05}\n"
+                            "  in_row:\n"
+                            "    wall_false_door: 0.4\n"
+                            "    by_class:\n"
+                            "      \"36/36\": {correct: 0.1, missized: 0.3, missed: 0.6}\n"),
+                      "m.yaml");
+  ASSERT_TRUE(m.in_row.has_value());
+  EXPECT_DOUBLE_EQ(*m.in_row->wall_false_door, 0.4);
+  EXPECT_DOUBLE_EQ(m.in_row->by_class.at(DoorClass::k36_36).missed, 0.6);
+  // Resolved: in a row the row's rates, where it has none the class's; alone the class's.
+  const Confusion c = Resolve(m, map::MatchIndex(testing::CorridorMap()));
+  const int k36_36 = static_cast<int>(DoorClass::k36_36), k36 = static_cast<int>(DoorClass::k36);
+  EXPECT_DOUBLE_EQ(c.Missed(k36_36, true), 0.6);
+  EXPECT_DOUBLE_EQ(c.Missed(k36_36, false), 0.05);
+  EXPECT_DOUBLE_EQ(c.Correct(k36, true), 0.8367);
+  EXPECT_DOUBLE_EQ(c.FalseDoor(true), 0.4);
+  EXPECT_DOUBLE_EQ(c.FalseDoor(false), 0.1591);
+  // Written and read back.
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  ASSERT_TRUE(back.in_row.has_value());
+  EXPECT_DOUBLE_EQ(*back.in_row->wall_false_door, 0.4);
+  EXPECT_DOUBLE_EQ(back.in_row->by_class.at(DoorClass::k36_36).correct, 0.1);
+  EXPECT_DOUBLE_EQ(back.by_class.at(DoorClass::k36_36).correct, 0.5);
+  // Without in_row, doors in a row have the rates of every other door.
+  const Confusion plain = Resolve(ErrorModel::Paper(), map::MatchIndex(testing::CorridorMap()));
+  EXPECT_DOUBLE_EQ(plain.Missed(k36, true), plain.Missed(k36, false));
+  EXPECT_DOUBLE_EQ(plain.FalseDoor(true), plain.FalseDoor(false));
+}
+
+TEST(ErrorModelFile, BadRatesOfDoorsInARowAreRejectedWithTheirKey) {
+  try {
+    ParseErrorModel(Model("  in_row:\n    by_class:\n"
+                          "      \"40\": {correct: 0.5, missized: 0.1, missed: 0.1}\n"),
+                    "m.yaml");
+    FAIL() << "accepted an in-row class row summing to 0.7";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_NE(e.key().find("in_row"), std::string::npos) << e.key();
+    EXPECT_NE(e.reason().find("must be 1"), std::string::npos);
+  }
+  EXPECT_THROW(ParseErrorModel(Model("  in_row:\n    wall_false_door: 1.5\n"), "m.yaml"),
+               InputError);
+  EXPECT_THROW(ParseErrorModel(Model("  in_row:\n    walls: 0.5\n"), "m.yaml"), InputError);
+}
+
 TEST(ErrorModelFile, AClassRowThatDoesNotSumToOneIsRejectedOnItsLine) {
   try {
     ParseErrorModel(Model("  by_class:\n    \"32\": {correct: 0.5, missized: 0.1, missed: 0.1}\n"),

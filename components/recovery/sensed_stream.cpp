@@ -105,14 +105,15 @@ void SensedStream::ProcessNextTrueEdge() {
 
 void SensedStream::SenseDoor(Piece p, map::SymbolCode code, double len) {
   const int k = code - 1;
+  const bool row = index_.in_row(p.truth);
   const double u = Uniform();
-  if (u < confusion_.class_correct[k]) {
+  if (u < confusion_.Correct(k, row)) {
     p.kind = Piece::kDoor;
     p.code = code;
     p.true_width_in = len;
     p.whole_edge = true;
     p.mark = DrawMark(p.truth);
-  } else if (u < confusion_.class_correct[k] + confusion_.class_missized[k]) {
+  } else if (u < confusion_.Correct(k, row) + confusion_.Missized(k, row)) {
     p.kind = Piece::kDoor;
     p.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(confusion_.missized_to[k])));
     p.true_width_in = len;
@@ -128,7 +129,8 @@ void SensedStream::SenseDoor(Piece p, map::SymbolCode code, double len) {
 }
 
 void SensedStream::SenseWall(Piece p, double len) {
-  if (confusion_.false_door > 0.0 && Uniform() < confusion_.false_door) {
+  const double false_door = confusion_.FalseDoor(index_.in_row(p.truth));
+  if (false_door > 0.0 && Uniform() < false_door) {
     const int c = DrawClass(confusion_.false_class);
     const double w = map::DoorClassWidthIn(static_cast<map::DoorClass>(c));
     const double at = Uniform() * std::max(0.0, len - w);

@@ -125,6 +125,36 @@ bool IsOpenEnd(const Edge& edge, double angle_before_deg, double angle_after_deg
          std::abs(b) >= kOpenEndMinTurnDeg && a * b > 0.0;
 }
 
+namespace {
+
+// The edge `d` steps from edge `k` (around a closed ring), or -1 past an open ring's end.
+int EdgeFrom(const Ring& ring, int k, int d) {
+  const int n = ring.EdgeCount();
+  int i = k + d;
+  if (ring.closed) i = ((i % n) + n) % n;
+  return i >= 0 && i < n ? i : -1;
+}
+
+bool IsDoorAt(const Ring& ring, int i) { return i >= 0 && ring.edges[i].door_class.has_value(); }
+
+bool ShortWallBetweenDoors(const Ring& ring, int k) {
+  const Edge& e = ring.edges[k];
+  if (!e.IsWall() || e.metric_in >= kRowWallIn) return false;
+  return IsDoorAt(ring, EdgeFrom(ring, k, -1)) && IsDoorAt(ring, EdgeFrom(ring, k, +1));
+}
+
+}  // namespace
+
+bool InDoorRow(const Ring& ring, int k) {
+  if (!IsDoorAt(ring, k)) return ShortWallBetweenDoors(ring, k);
+  for (const int side : {-1, +1}) {
+    const int next = EdgeFrom(ring, k, side);
+    if (next < 0) continue;
+    if (IsDoorAt(ring, next) || ShortWallBetweenDoors(ring, next)) return true;
+  }
+  return false;
+}
+
 Edge Edge::Wall(double metric_in) {
   Edge e;
   e.type = EdgeType::kHallway;

@@ -113,6 +113,18 @@ struct Node {
   bool artificial = false;  // the node where this ring is joined to another ring (§3.3)
 };
 
+// Doors in a row (the hallway's look changes most from door to door there: panels and
+// pilasters between them, dark leaves, double doors read leaf by leaf). A wall shorter than
+// kRowWallIn between two doors joins them into a row; a door is in a row when another door
+// is beside it or across such a wall. The landmark pipeline's error rates are measured and
+// modelled apart for doors in a row and doors alone, and for those short walls and the rest
+// (recovery::ErrorModel::in_row).
+inline constexpr double kRowWallIn = 60.0;
+struct Ring;
+// Whether edge `k` of `ring` is a door in a row, or a wall under kRowWallIn between two
+// doors: the edges the error model gives its in-row rates.
+bool InDoorRow(const Ring& ring, int k);
+
 // What a ring outlines (map format 2). A `kSide` ring is one side of a hallway (the rings
 // of §3.3): the hallway's other side is another ring, or, for a ring simulated on its own,
 // a wall the simulation adds. A `kCorridor` ring is the closed outline of a corridor's free

@@ -95,6 +95,35 @@ TEST(MapModelTest, ConstructorRejectsAWrongNodeCount) {
   EXPECT_THROW(Map({}, {ring}), std::invalid_argument);
 }
 
+TEST(DoorRowTest, DoorsBesideOrAcrossAShortWallAreARowAndTheShortWallWithThem) {
+  Ring ring;
+  ring.closed = false;
+  // 0 wall, 1 door, 2 short wall, 3 door, 4 door, 5 long wall, 6 door, 7 wall just at the
+  // limit, 8 door, 9 wall.
+  ring.edges = {Edge::Wall(200),
+                Edge::Door(DoorClass::k36),
+                Edge::Wall(46),
+                Edge::Door(DoorClass::k36_36),
+                Edge::Door(DoorClass::k40),
+                Edge::Wall(300),
+                Edge::Door(DoorClass::k32),
+                Edge::Wall(kRowWallIn),
+                Edge::Door(DoorClass::k30),
+                Edge::Wall(100)};
+  const std::vector<bool> row = {false, true, true, true, true, false, false, false, false, false};
+  for (int k = 0; k < ring.EdgeCount(); ++k) EXPECT_EQ(InDoorRow(ring, k), row[k]) << "edge " << k;
+  // Open ring: the first door has nothing before it; closed, the last wall joins it to the
+  // first door round the ring when short.
+  ring.edges[0] = Edge::Door(DoorClass::k36);
+  ring.edges[9] = Edge::Wall(20);
+  EXPECT_TRUE(InDoorRow(ring, 0));  // beside door 1
+  EXPECT_FALSE(InDoorRow(ring, 9));
+  EXPECT_FALSE(InDoorRow(ring, 8));
+  ring.closed = true;
+  EXPECT_TRUE(InDoorRow(ring, 9));
+  EXPECT_TRUE(InDoorRow(ring, 8));
+}
+
 TEST(MapModelTest, DoorClassesRoundTripByName) {
   for (int k = 0; k < kDoorClassCount; ++k) {
     const auto cls = static_cast<DoorClass>(k);

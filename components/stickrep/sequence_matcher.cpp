@@ -48,6 +48,7 @@ MatchIndex::MatchIndex(const Map& map) {
       angle_start_.push_back(ring.nodes[i].angle_deg);
       angle_end_.push_back(ring.nodes[(i + 1) % ring.NodeCount()].angle_deg);
       open_end_.push_back(IsOpenEnd(e, angle_start_.back(), angle_end_.back()) ? 1 : 0);
+      in_row_.push_back(InDoorRow(ring, i) ? 1 : 0);
       ring_of_.push_back(r);
       by_code_[code_.back()].push_back(g);
     }

@@ -89,6 +89,8 @@ class MatchIndex {
   // Whether edge g is a corridor's open end (map::IsOpenEnd): travelling into it the robot
   // leaves the ring. Matched as wall.
   bool open_end(int g) const { return open_end_[g] != 0; }
+  // Whether edge g is a door in a row or a short wall between two doors (map::InDoorRow).
+  bool in_row(int g) const { return in_row_[g] != 0; }
   // Global indices of all edges with this code, in ring order.
   const std::vector<std::int32_t>& EdgesWithCode(SymbolCode code) const { return by_code_[code]; }
 
@@ -115,6 +117,7 @@ class MatchIndex {
   std::vector<double> angle_start_;
   std::vector<double> angle_end_;
   std::vector<std::uint8_t> open_end_;
+  std::vector<std::uint8_t> in_row_;
   std::vector<std::int32_t> ring_of_;
   std::vector<std::int32_t> ring_offset_;
   std::vector<std::int32_t> ring_size_;

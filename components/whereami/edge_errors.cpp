@@ -58,34 +58,13 @@ std::optional<recovery::ErrorModel::MarkRow> Shares(const EdgeErrorCounts::MarkC
   return row;
 }
 
-// The index of the edge `d` places from edge `k` of `ring` (around a closed ring), or -1
-// past an end.
-int EdgeFrom(const map::Ring& ring, int k, int d) {
-  const int n = ring.EdgeCount();
-  int i = k + d;
-  if (ring.closed) i = ((i % n) + n) % n;
-  return i >= 0 && i < n ? i : -1;
-}
-
-bool IsDoorAt(const map::Ring& ring, int i) {
-  return i >= 0 && ring.edges[i].door_class.has_value();
-}
-
-// Whether edge `k` is a wall shorter than EdgeErrorCounts::kRowWallIn between two doors.
-bool ShortWallBetweenDoors(const map::Ring& ring, int k) {
-  const map::Edge& e = ring.edges[k];
-  if (!e.IsWall() || e.metric_in >= EdgeErrorCounts::kRowWallIn) return false;
-  return IsDoorAt(ring, EdgeFrom(ring, k, -1)) && IsDoorAt(ring, EdgeFrom(ring, k, +1));
-}
-
-// Whether the door at edge `k` has another door beside it or across such a short wall.
-bool DoorInRow(const map::Ring& ring, int k) {
-  for (const int side : {-1, +1}) {
-    const int next = EdgeFrom(ring, k, side);
-    if (next < 0) continue;
-    if (IsDoorAt(ring, next) || ShortWallBetweenDoors(ring, next)) return true;
-  }
-  return false;
+// A tally's rates, shrunk towards `prior` by EdgeErrorCounts::kClassPriorDoors doors' worth.
+recovery::ErrorModel::DoorRates Shrunk(const EdgeErrorCounts::DoorTally& t,
+                                       const recovery::ErrorModel::DoorRates& prior) {
+  const double w = EdgeErrorCounts::kClassPriorDoors;
+  const double n = static_cast<double>(t.passed) + w;
+  return {(t.correct + w * prior.correct) / n, (t.missized + w * prior.missized) / n,
+          (t.missed + w * prior.missed) / n};
 }
 
 }  // namespace
@@ -116,15 +95,33 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
       m.false_door_classes[static_cast<map::DoorClass>(c)] = static_cast<double>(false_class[c]) / fp;
     }
   }
+  const recovery::ErrorModel::DoorRates overall{m.door_correct, m.door_missized, m.door_missed};
+  std::map<map::DoorClass, recovery::ErrorModel::DoorRates> classes;
   for (int k = 0; k < map::kDoorClassCount; ++k) {
-    const DoorTally& t = by_class[k];
-    if (t.passed == 0) continue;
-    const double n = static_cast<double>(t.passed) + kClassPriorDoors;
-    recovery::ErrorModel::DoorRates r;
-    r.correct = (t.correct + kClassPriorDoors * m.door_correct) / n;
-    r.missized = (t.missized + kClassPriorDoors * m.door_missized) / n;
-    r.missed = (t.missed + kClassPriorDoors * m.door_missed) / n;
-    m.by_class[static_cast<map::DoorClass>(k)] = r;
+    if (by_class[k].passed > 0)
+      classes[static_cast<map::DoorClass>(k)] = Shrunk(by_class[k], overall);
+  }
+  m.by_class = classes;
+  const WallTally& row_walls = walls_by_row[1];
+  bool rows = row_walls.walls > 0;
+  for (const DoorTally& t : by_row[1]) rows = rows || t.passed > 0;
+  if (rows) {
+    // Each context's rates, shrunk towards its class's (or, for the walls, all walls').
+    recovery::ErrorModel::InRow in_row;
+    m.by_class.clear();
+    for (int k = 0; k < map::kDoorClassCount; ++k) {
+      const auto c = static_cast<map::DoorClass>(k);
+      const auto it = classes.find(c);
+      if (it == classes.end()) continue;
+      m.by_class[c] = Shrunk(by_row[0][k], it->second);
+      in_row.by_class[c] = Shrunk(by_row[1][k], it->second);
+    }
+    const auto walls = [&](const WallTally& w) {
+      return (w.false_doors + kClassPriorDoors * m.wall_false_door) / (w.walls + kClassPriorDoors);
+    };
+    in_row.wall_false_door = walls(row_walls);
+    m.wall_false_door = walls(walls_by_row[0]);
+    m.in_row = in_row;
   }
   if (leaf_reads > 0) {
     m.leaf_split = static_cast<double>(leaf_split) / leaf_reads;
@@ -309,7 +306,7 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       const int cls = static_cast<int>(*edge.door_class);
       Tally* const tallies[] = {&c.by_width[static_cast<int>(std::lround(edge.metric_in))],
                                 &c.by_class[cls],
-                                &c.by_row[DoorInRow(view_ring, passed[p].edge)][cls]};
+                                &c.by_row[map::InDoorRow(view_ring, passed[p].edge)][cls]};
       const auto count = [&tallies](long Tally::*field) {
         for (Tally* t : tallies) ++(t->*field);
       };
@@ -353,8 +350,7 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       }
     } else if (edge.IsWall()) {
       ++c.true_walls;
-      EdgeErrorCounts::WallTally& walls =
-          c.walls_by_row[ShortWallBetweenDoors(view_ring, passed[p].edge)];
+      EdgeErrorCounts::WallTally& walls = c.walls_by_row[map::InDoorRow(view_ring, passed[p].edge)];
       ++walls.walls;
       if (it == doors_on.end()) continue;
       for (std::size_t k : it->second) {

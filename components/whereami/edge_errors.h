@@ -48,13 +48,9 @@ struct EdgeErrorCounts {
   std::map<int, DoorTally> by_width;
   // The same by the door's class: the error model's per-class rates.
   std::array<DoorTally, map::kDoorClassCount> by_class{};
-  // Doors in a row and doors alone, by class ([1][class]: a door with another door less
-  // than kRowWallIn of wall away on either side), and the walls shorter than kRowWallIn
-  // between two doors against every other wall ([1]: those short walls), with the false
-  // doors sensed on them. Rows of doors are where the hallway's look changes most from
-  // door to door (panels and pilasters between them, dark leaves); the error model's rates
-  // are the same for every door of a class.
-  static constexpr double kRowWallIn = 60.0;
+  // Doors in a row and doors alone, by class ([1][class]: map::InDoorRow), and the walls
+  // shorter than map::kRowWallIn between two doors against every other wall ([1]: those
+  // short walls), with the false doors sensed on them: the error model's in-row rates.
   std::array<std::array<DoorTally, map::kDoorClassCount>, 2> by_row{};
   struct WallTally {
     long walls = 0, false_doors = 0;
@@ -70,7 +66,11 @@ struct EdgeErrorCounts {
   void Add(const EdgeErrorCounts& other);
   // The rates as an error model (door rates per true door, false doors per true wall). Each
   // class's own rates are shrunk towards the overall ones by kClassPriorDoors doors' worth,
-  // so a class seen a few times, all correct, is not made certain. The mark rows are the
+  // so a class seen a few times, all correct, is not made certain. Where doors in a row or
+  // short walls between doors were passed, the rates are split (ErrorModel::in_row): each
+  // class's doors alone and in a row, shrunk likewise towards the class's rates, and the
+  // false doors of those short walls and of the other walls, shrunk towards all walls'
+  // by as many walls' worth. The mark rows are the
   // read shares of each true mark seen (mis-sized reads shrunk likewise towards the reads
   // with the class right), and of the false doors.
   static constexpr double kClassPriorDoors = 20.0;

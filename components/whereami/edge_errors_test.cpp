@@ -129,6 +129,22 @@ TEST(EdgeErrorsTest, TalliesDoorsInARowApartFromDoorsAloneAndTheShortWallsBetwee
   sum.Add(c);
   EXPECT_EQ(sum.by_row[1][cls(map::DoorClass::k36)].correct, 4);
   EXPECT_EQ(sum.walls_by_row[1].false_doors, 2);
+  // As a model: each class's rates (3 of 3 single doors right, the double door missed,
+  // shrunk towards 3 of 4 doors right by 20 doors' worth), split into the doors in a row
+  // and alone, each shrunk towards its class's; the short walls' false doors apart.
+  const recovery::ErrorModel m = c.ToModel("test");
+  ASSERT_TRUE(m.in_row.has_value());
+  const double k = EdgeErrorCounts::kClassPriorDoors;
+  const double class36 = (3 + k * 0.75) / (3 + k), class72 = (0 + k * 0.75) / (1 + k);
+  EXPECT_NEAR(m.in_row->by_class.at(map::DoorClass::k36).correct, (2 + k * class36) / (2 + k),
+              1e-12);
+  EXPECT_NEAR(m.by_class.at(map::DoorClass::k36).correct, (1 + k * class36) / (1 + k), 1e-12);
+  EXPECT_NEAR(m.in_row->by_class.at(map::DoorClass::k36_36).correct, k * class72 / (1 + k), 1e-12);
+  // Never seen alone: its class's rates.
+  EXPECT_NEAR(m.by_class.at(map::DoorClass::k36_36).correct, class72, 1e-12);
+  EXPECT_NEAR(*m.in_row->wall_false_door, (1 + k / 3) / (2 + k), 1e-12);
+  EXPECT_NEAR(m.wall_false_door, (0 + k / 3) / (1 + k), 1e-12);
+  EXPECT_NO_THROW(m.Validate());
 }
 
 TEST(EdgeErrorsTest, RunsWithoutAnyDoorGiveNoMarkRows) {

@@ -140,7 +140,7 @@ void PrintRowTallies(const EdgeErrorCounts& total, std::ostream& out) {
   out << fmt::format(
       "  by class, doors alone and in a row (another door beside it or under {:g} "
       "in of wall away): passed, with their class, mis-sized, missed\n",
-      EdgeErrorCounts::kRowWallIn);
+      map::kRowWallIn);
   for (int k = 0; k < map::kDoorClassCount; ++k) {
     const EdgeErrorCounts::DoorTally& alone = total.by_row[0][k];
     const EdgeErrorCounts::DoorTally& row = total.by_row[1][k];
@@ -156,8 +156,7 @@ void PrintRowTallies(const EdgeErrorCounts& total, std::ostream& out) {
   out << fmt::format(
       "  false doors per true wall: on walls under {:g} in between two doors {}; "
       "on the other walls {}\n",
-      EdgeErrorCounts::kRowWallIn, per_wall(total.walls_by_row[1]),
-      per_wall(total.walls_by_row[0]));
+      map::kRowWallIn, per_wall(total.walls_by_row[1]), per_wall(total.walls_by_row[0]));
 }
 
 // How the leaves' marks (Table 6.8) were read: counts, true mark by row, false doors last.
