@@ -26,6 +26,9 @@ struct ObservationSettings {
   double bayes_lost_threshold = 0.05;
   // A false door must fit in the wall that holds it (recovery::BayesSettings::false_door_fit).
   bool bayes_false_door_fit = false;
+  // Missed doors one sensed wall may span (recovery::BayesSettings::max_missed_doors;
+  // replaces the study's): in a row of doors the pipeline misses several in a row.
+  int bayes_max_missed_doors = 2;
 };
 
 // The localizer process's settings (configs/localizer.yaml). The Bayes matcher's

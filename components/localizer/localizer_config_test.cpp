@@ -55,6 +55,7 @@ TEST(LocalizerSettingsTest, AMarkedMapGetsTheMarkedModelAndAnUnmarkedOneTheDefau
   EXPECT_EQ(on_marked.observation.bayes_threshold, marked.bayes_threshold);
   EXPECT_EQ(on_marked.observation.bayes_lost_threshold, marked.bayes_lost_threshold);
   EXPECT_EQ(on_marked.observation.bayes_false_door_fit, marked.bayes_false_door_fit);
+  EXPECT_EQ(on_marked.observation.bayes_max_missed_doors, marked.bayes_max_missed_doors);
   EXPECT_EQ(on_marked.observation.calibration.slope, marked.calibration.slope);
   EXPECT_EQ(on_marked.observation.calibration.offset, marked.calibration.offset);
   EXPECT_FALSE(on_marked.on_marked_maps.has_value());
@@ -70,6 +71,7 @@ TEST(LocalizerSettingsTest, AMarkedMapGetsTheMarkedModelAndAnUnmarkedOneTheDefau
   const LocalizerConfig config = MakeLocalizerConfig(on_marked, HallWithDoor("old_window"));
   EXPECT_EQ(config.bayes.settings.threshold, marked.bayes_threshold);
   EXPECT_EQ(config.bayes.settings.false_door_fit, marked.bayes_false_door_fit);
+  EXPECT_EQ(config.bayes.settings.max_missed_doors, marked.bayes_max_missed_doors);
   EXPECT_EQ(config.lost_threshold, marked.bayes_lost_threshold);
 }
 
