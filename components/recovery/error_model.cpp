@@ -563,17 +563,33 @@ StudyConfig ParseStudyConfig(const std::string& text, const std::string& name) {
   return StudyConfigFromYaml(StrictYaml::LoadString(text, name));
 }
 
+// The shortest text that reads back as the same double: a model that loaded loads again
+// (rounding could push a sum that was just within kSumTolerance past it).
+static std::string RoundTripNumber(double v) {
+  char buf[32];
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return std::string(buf);
+}
+
+// A `by_class:` block of per-class rates at `indent`; nothing when there are none.
+static std::string FormatClassRates(const std::map<DoorClass, ErrorModel::DoorRates>& rates,
+                                    const std::string& indent) {
+  if (rates.empty()) return "";
+  std::string out = indent + "by_class:\n";
+  for (const auto& [c, r] : rates) {
+    out += indent + "  \"" + std::string(map::DoorClassName(c)) +
+           "\": {correct: " + RoundTripNumber(r.correct) +
+           ", missized: " + RoundTripNumber(r.missized) + ", missed: " + RoundTripNumber(r.missed) +
+           "}\n";
+  }
+  return out;
+}
+
 std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment) {
-  // The shortest text that reads back as the same double: a model that loaded loads again
-  // (rounding could push a sum that was just within kSumTolerance past it).
-  const auto number = [](double v) {
-    char buf[32];
-    for (int precision = 1; precision <= 17; ++precision) {
-      std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-      if (std::strtod(buf, nullptr) == v) break;
-    }
-    return std::string(buf);
-  };
+  const auto number = RoundTripNumber;
   const auto distribution = [&](const std::map<map::DoorClass, double>& d) {
     std::string s = "{";
     for (const auto& [c, p] : d) {
@@ -604,23 +620,13 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
   }
   out += "  missized_to: " + missized + "}\n";
   out += "  false_door_classes: " + distribution(m.false_door_classes) + "\n";
-  const auto class_rates = [&](const std::map<DoorClass, ErrorModel::DoorRates>& rates,
-                               const std::string& indent) {
-    if (rates.empty()) return;
-    out += indent + "by_class:\n";
-    for (const auto& [c, r] : rates) {
-      out += indent + "  \"" + std::string(map::DoorClassName(c)) +
-             "\": {correct: " + number(r.correct) + ", missized: " + number(r.missized) +
-             ", missed: " + number(r.missed) + "}\n";
-    }
-  };
-  class_rates(m.by_class, "  ");
+  out += FormatClassRates(m.by_class, "  ");
   if (m.in_row) {
     out += "  in_row:\n";
     if (m.in_row->wall_false_door) {
       out += "    wall_false_door: " + number(*m.in_row->wall_false_door) + "\n";
     }
-    class_rates(m.in_row->by_class, "    ");
+    out += FormatClassRates(m.in_row->by_class, "    ");
   }
   if (m.leaf_split > 0.0 || m.leaf_sliver > 0.0 || m.leaf_wall_before > 0.0 ||
       m.leaf_wall_after > 0.0) {

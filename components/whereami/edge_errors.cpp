@@ -67,6 +67,74 @@ recovery::ErrorModel::DoorRates Shrunk(const EdgeErrorCounts::DoorTally& t,
           (t.missed + w * prior.missed) / n};
 }
 
+// The per-class door rates: each class's tally shrunk towards the overall rates, and split
+// into doors alone and in a row (and the false doors of the short walls between doors apart
+// from the other walls') where the runs passed any (ErrorModel::in_row).
+void SetClassRates(const EdgeErrorCounts& c, recovery::ErrorModel* m) {
+  const recovery::ErrorModel::DoorRates overall{m->door_correct, m->door_missized, m->door_missed};
+  std::map<map::DoorClass, recovery::ErrorModel::DoorRates> classes;
+  for (int k = 0; k < map::kDoorClassCount; ++k) {
+    if (c.by_class[k].passed > 0)
+      classes[static_cast<map::DoorClass>(k)] = Shrunk(c.by_class[k], overall);
+  }
+  m->by_class = classes;
+  const EdgeErrorCounts::WallTally& row_walls = c.walls_by_row[1];
+  bool rows = row_walls.walls > 0;
+  for (const EdgeErrorCounts::DoorTally& t : c.by_row[1]) rows = rows || t.passed > 0;
+  if (rows) {
+    // Each context's rates, shrunk towards its class's (or, for the walls, all walls').
+    recovery::ErrorModel::InRow in_row;
+    m->by_class.clear();
+    for (int k = 0; k < map::kDoorClassCount; ++k) {
+      const auto cls = static_cast<map::DoorClass>(k);
+      const auto it = classes.find(cls);
+      if (it == classes.end()) continue;
+      m->by_class[cls] = Shrunk(c.by_row[0][k], it->second);
+      in_row.by_class[cls] = Shrunk(c.by_row[1][k], it->second);
+    }
+    const double prior = EdgeErrorCounts::kClassPriorDoors;
+    const auto walls = [&](const EdgeErrorCounts::WallTally& w) {
+      return (w.false_doors + prior * m->wall_false_door) / (w.walls + prior);
+    };
+    in_row.wall_false_door = walls(row_walls);
+    m->wall_false_door = walls(c.walls_by_row[0]);
+    m->in_row = in_row;
+  }
+}
+
+// The marks' read shares (Table 6.8): of each true mark read with the class right, its
+// mis-sized reads, and the false doors'.
+void SetMarkReads(const EdgeErrorCounts& c, recovery::ErrorModel* m) {
+  for (int t = 0; t < map::kDoorMarkCount; ++t) {
+    const auto mark = static_cast<map::DoorMark>(t);
+    const auto right = Shares(c.mark_read[t]);
+    if (!right) continue;
+    m->mark_read[mark] = *right;
+    // The mis-sized reads of a mark, shrunk towards its reads with the class right by
+    // kClassPriorDoors doors' worth: a few mis-sized doors, all read one way, do not make
+    // that read certain.
+    long n = 0;
+    for (long k : c.mark_read_missized[t]) n += k;
+    if (n == 0) continue;
+    const double prior = EdgeErrorCounts::kClassPriorDoors;
+    recovery::ErrorModel::MarkRow row{};
+    for (int r = 0; r < map::kDoorMarkCount; ++r) {
+      row[r] = (c.mark_read_missized[t][r] + prior * (*right)[r]) / (n + prior);
+    }
+    m->mark_read_missized[mark] = row;
+  }
+  if (!m->mark_read.empty()) {
+    // No false door seen: its reads are taken to be the doors' reads, all marks together.
+    EdgeErrorCounts::MarkCounts all = c.false_mark;
+    if (!Shares(all)) {
+      for (const EdgeErrorCounts::MarkCounts& n : c.mark_read) {
+        for (int r = 0; r < map::kDoorMarkCount; ++r) all[r] += n[r];
+      }
+    }
+    m->false_door_marks = Shares(all);
+  }
+}
+
 }  // namespace
 
 recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
@@ -95,67 +163,14 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
       m.false_door_classes[static_cast<map::DoorClass>(c)] = static_cast<double>(false_class[c]) / fp;
     }
   }
-  const recovery::ErrorModel::DoorRates overall{m.door_correct, m.door_missized, m.door_missed};
-  std::map<map::DoorClass, recovery::ErrorModel::DoorRates> classes;
-  for (int k = 0; k < map::kDoorClassCount; ++k) {
-    if (by_class[k].passed > 0)
-      classes[static_cast<map::DoorClass>(k)] = Shrunk(by_class[k], overall);
-  }
-  m.by_class = classes;
-  const WallTally& row_walls = walls_by_row[1];
-  bool rows = row_walls.walls > 0;
-  for (const DoorTally& t : by_row[1]) rows = rows || t.passed > 0;
-  if (rows) {
-    // Each context's rates, shrunk towards its class's (or, for the walls, all walls').
-    recovery::ErrorModel::InRow in_row;
-    m.by_class.clear();
-    for (int k = 0; k < map::kDoorClassCount; ++k) {
-      const auto c = static_cast<map::DoorClass>(k);
-      const auto it = classes.find(c);
-      if (it == classes.end()) continue;
-      m.by_class[c] = Shrunk(by_row[0][k], it->second);
-      in_row.by_class[c] = Shrunk(by_row[1][k], it->second);
-    }
-    const auto walls = [&](const WallTally& w) {
-      return (w.false_doors + kClassPriorDoors * m.wall_false_door) / (w.walls + kClassPriorDoors);
-    };
-    in_row.wall_false_door = walls(row_walls);
-    m.wall_false_door = walls(walls_by_row[0]);
-    m.in_row = in_row;
-  }
+  SetClassRates(*this, &m);
   if (leaf_reads > 0) {
     m.leaf_split = static_cast<double>(leaf_split) / leaf_reads;
     m.leaf_sliver = leaf_split > 0 ? static_cast<double>(leaf_sliver_in.size()) / leaf_split : 0.0;
     m.leaf_wall_before = static_cast<double>(leaf_wall_before) / leaf_reads;
     m.leaf_wall_after = static_cast<double>(leaf_wall_after) / leaf_reads;
   }
-  for (int t = 0; t < map::kDoorMarkCount; ++t) {
-    const auto mark = static_cast<map::DoorMark>(t);
-    const auto right = Shares(mark_read[t]);
-    if (!right) continue;
-    m.mark_read[mark] = *right;
-    // The mis-sized reads of a mark, shrunk towards its reads with the class right by
-    // kClassPriorDoors doors' worth: a few mis-sized doors, all read one way, do not make
-    // that read certain.
-    long n = 0;
-    for (long k : mark_read_missized[t]) n += k;
-    if (n == 0) continue;
-    recovery::ErrorModel::MarkRow row{};
-    for (int r = 0; r < map::kDoorMarkCount; ++r) {
-      row[r] = (mark_read_missized[t][r] + kClassPriorDoors * (*right)[r]) / (n + kClassPriorDoors);
-    }
-    m.mark_read_missized[mark] = row;
-  }
-  if (!m.mark_read.empty()) {
-    // No false door seen: its reads are taken to be the doors' reads, all marks together.
-    EdgeErrorCounts::MarkCounts all = false_mark;
-    if (!Shares(all)) {
-      for (const MarkCounts& n : mark_read) {
-        for (int r = 0; r < map::kDoorMarkCount; ++r) all[r] += n[r];
-      }
-    }
-    m.false_door_marks = Shares(all);
-  }
+  SetMarkReads(*this, &m);
   return m;
 }
 
