@@ -369,21 +369,11 @@ TEST_F(BayesLocalizerOpenEndTest, TheLastWallBeforeAnOpenEndMayRunOnOutThroughIt
 // (nodes 0, 6 and 10, marked |, are 90 deg corners; the rest 180 deg).
 map::Map CorridorWithARowOfDoors() {
   using map::Edge;
-  map::Ring ring;
-  ring.id = "corridor";
-  ring.closed = true;
-  ring.edges = {
-      Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(40),  Edge::Door(DoorClass::k36),
-      Edge::Wall(200), Edge::Door(DoorClass::k32), Edge::Wall(120), Edge::Door(DoorClass::k36),
-      Edge::Wall(276), Edge::Door(DoorClass::k32), Edge::Wall(500)};
-  for (std::size_t i = 0; i < ring.edges.size(); ++i) {
-    map::Node n;
-    n.angle_deg = (i == 0 || i == 6 || i == 10) ? 90.0 : 180.0;
-    ring.nodes.push_back(n);
-  }
-  map::MapInfo info;
-  info.name = "corridor";
-  return map::Map(info, {ring});
+  return testing::ClosedCorridor(
+      {Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(40), Edge::Door(DoorClass::k36),
+       Edge::Wall(200), Edge::Door(DoorClass::k32), Edge::Wall(120), Edge::Door(DoorClass::k36),
+       Edge::Wall(276), Edge::Door(DoorClass::k32), Edge::Wall(500)},
+      {0, 6, 10});
 }
 
 TEST(BayesLocalizerRowTest, ADoorMissedInARowWeighsAsTheModelsRowsMissThem) {
@@ -422,21 +412,11 @@ TEST(BayesLocalizerRowTest, ADoorMissedInARowWeighsAsTheModelsRowsMissThem) {
 // (nodes 0 and 5, marked |, are 90 deg corners; the rest 180 deg).
 map::Map CorridorWithDoubleDoor() {
   using map::Edge;
-  map::Ring ring;
-  ring.id = "corridor";
-  ring.closed = true;
-  ring.edges = {Edge::Wall(120), Edge::Door(DoorClass::k36_36), Edge::Wall(80),
-                Edge::Door(DoorClass::k40), Edge::Wall(150), Edge::Wall(156),
-                Edge::Door(DoorClass::k36), Edge::Wall(80), Edge::Door(DoorClass::k40),
-                Edge::Wall(200)};
-  for (std::size_t i = 0; i < ring.edges.size(); ++i) {
-    map::Node n;
-    n.angle_deg = (i == 0 || i == 5) ? 90.0 : 180.0;
-    ring.nodes.push_back(n);
-  }
-  map::MapInfo info;
-  info.name = "corridor";
-  return map::Map(info, {ring});
+  return testing::ClosedCorridor(
+      {Edge::Wall(120), Edge::Door(DoorClass::k36_36), Edge::Wall(80), Edge::Door(DoorClass::k40),
+       Edge::Wall(150), Edge::Wall(156), Edge::Door(DoorClass::k36), Edge::Wall(80),
+       Edge::Door(DoorClass::k40), Edge::Wall(200)},
+      {0, 5});
 }
 
 // The paper's rates, with a double door read as one leaf as often as the live pipeline does

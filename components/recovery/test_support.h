@@ -6,6 +6,7 @@
 //   0 W120  1 D36  2 W60  3 D36  4 W60  5 D32  6 W200  7 D40  8 W90  9 D36  10 W75
 //   11 D40  12 W150        (node 0 and node 12 are 90° corners, the rest 180°)
 
+#include <utility>
 #include <vector>
 
 #include "stickrep/map.h"
@@ -13,21 +14,20 @@
 
 namespace stickrep::recovery::testing {
 
-inline map::Map CorridorMap() {
-  using map::DoorClass;
-  using map::Edge;
+// A closed ring "corridor" of `edges`, its nodes 90° corners at `corners` and 180° elsewhere,
+// laid out along x by the edges' lengths.
+inline map::Map ClosedCorridor(std::vector<map::Edge> edges, const std::vector<int>& corners) {
   map::Ring ring;
   ring.id = "corridor";
   ring.closed = true;
-  ring.edges = {
-      Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(60),  Edge::Door(DoorClass::k36),
-      Edge::Wall(60),  Edge::Door(DoorClass::k32), Edge::Wall(200), Edge::Door(DoorClass::k40),
-      Edge::Wall(90),  Edge::Door(DoorClass::k36), Edge::Wall(75),  Edge::Door(DoorClass::k40),
-      Edge::Wall(150)};
+  ring.edges = std::move(edges);
   double x = 0;
   for (std::size_t i = 0; i < ring.edges.size(); ++i) {
     map::Node n;
-    n.angle_deg = (i == 0 || i == 12) ? 90.0 : 180.0;
+    n.angle_deg = 180.0;
+    for (const int c : corners) {
+      if (static_cast<std::size_t>(c) == i) n.angle_deg = 90.0;
+    }
     n.x_in = x;
     ring.nodes.push_back(n);
     x += ring.edges[i].metric_in;
@@ -35,6 +35,17 @@ inline map::Map CorridorMap() {
   map::MapInfo info;
   info.name = "corridor";
   return map::Map(info, {ring});
+}
+
+inline map::Map CorridorMap() {
+  using map::DoorClass;
+  using map::Edge;
+  return ClosedCorridor(
+      {Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(60), Edge::Door(DoorClass::k36),
+       Edge::Wall(60), Edge::Door(DoorClass::k32), Edge::Wall(200), Edge::Door(DoorClass::k40),
+       Edge::Wall(90), Edge::Door(DoorClass::k36), Edge::Wall(75), Edge::Door(DoorClass::k40),
+       Edge::Wall(150)},
+      {0, 12});
 }
 
 inline map::SensedEdge Wall(double in, double angle = 180.0, bool lower_bound = false) {
