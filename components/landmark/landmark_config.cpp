@@ -32,6 +32,7 @@ LandmarkConfig LoadLandmarkConfig(const StrictYaml& c) {
   } else {
     c.Fail("row_mode", "'" + rows + "' is not one of: five_rows, full_frame");
   }
+  out.detector.seam_lines = c.Get<bool>("seam_lines");
   out.max_scan_age_s = c.Get<double>("max_scan_age_s", 0.01, 2.0, "s");
   c.Finish();
   return out;

@@ -7,8 +7,8 @@
 
 namespace stickrep::landmark {
 
-// The landmark process's settings (configs/landmark.yaml): the detector's row mode, the
-// sensing geometry and the classifier's confidence threshold, and how close in time a
+// The landmark process's settings (configs/landmark.yaml): the detector's row mode and seam
+// lines, the sensing geometry and the classifier's confidence threshold, and how close in time a
 // frame's sonar scan and odometry must be.
 struct LandmarkConfig {
   vision::RibbonDetectorParams detector;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace stickrep::vision {
 namespace {
@@ -327,15 +329,25 @@ struct PairBands {
   double far_l_lo, far_l_hi, far_r_lo, far_r_hi;
 };
 
+// The columns of a line footprint's own level: its clump less the filter's spread on
+// either side, at least the pixel under its column.
+std::pair<double, double> LineCore(const Footprint& fp) {
+  const double lo = std::min<double>(fp.first_bin + kHalf, std::floor(fp.column_px));
+  const double hi = std::max<double>(fp.last_bin - kHalf, std::ceil(fp.column_px));
+  return {lo, hi};
+}
+
 PairBands Bands(const CandidatePair& pair, const std::vector<Footprint>& footprints) {
   constexpr double kEdgeGapPx = 2.0;  // the edge's own blur
   const double lj = pair.left_px, rj = pair.right_px, w = pair.width_px;
   const double near = std::clamp(0.15 * w, 3.0, 12.0);
   const double far = std::clamp(0.35 * w, 4.0, 40.0);
   const double inset = std::min(kEdgeGapPx, 0.25 * w);
+  const Footprint& left = footprints[pair.left_index];
+  const Footprint& right = footprints[pair.right_index];
   PairBands b;
-  b.interior_lo = lj + inset;
-  b.interior_hi = rj - inset;
+  b.interior_lo = left.line ? std::max(lj + inset, left.last_bin + 1.0) : lj + inset;
+  b.interior_hi = right.line ? std::min(rj - inset, right.first_bin - 1.0) : rj - inset;
   b.near_l_hi = lj - kEdgeGapPx;
   b.near_l_lo = lj - kEdgeGapPx - near;
   b.far_l_hi = b.near_l_lo;
@@ -346,6 +358,7 @@ PairBands Bands(const CandidatePair& pair, const std::vector<Footprint>& footpri
       b.far_l_hi = prev - kEdgeGapPx;
     }
   }
+  if (left.line) std::tie(b.near_l_lo, b.near_l_hi) = LineCore(left);  // the face's flank
   b.far_l_lo = b.far_l_hi - far;
   b.near_r_lo = rj + kEdgeGapPx;
   b.near_r_hi = rj + kEdgeGapPx + near;
@@ -357,8 +370,26 @@ PairBands Bands(const CandidatePair& pair, const std::vector<Footprint>& footpri
       b.far_r_lo = next + kEdgeGapPx;
     }
   }
+  if (right.line) std::tie(b.near_r_lo, b.near_r_hi) = LineCore(right);
   b.far_r_hi = b.far_r_lo + far;
   return b;
+}
+
+// RibbonDetectorParams::seam_lines: marks the footprints that are thin lines (like levels
+// just either side of the clump, its core darker or lighter than both).
+void MarkLines(const RowProfile& profile, const RibbonDetectorParams& params,
+               std::vector<Footprint>* footprints) {
+  constexpr double kSidePx = 6.0;
+  for (Footprint& fp : *footprints) {
+    const auto [core_lo, core_hi] = LineCore(fp);
+    const double core = profile.Mean(core_lo, core_hi);
+    const double left = profile.Mean(fp.first_bin - kHalf - kSidePx, fp.first_bin - kHalf);
+    const double right = profile.Mean(fp.last_bin + kHalf, fp.last_bin + kHalf + kSidePx);
+    if (std::isnan(core) || std::isnan(left) || std::isnan(right)) continue;
+    const double dl = core - left, dr = core - right;
+    fp.line = std::abs(left - right) <= params.line_side_agreement && dl * dr > 0.0 &&
+              std::min(std::abs(dl), std::abs(dr)) >= params.min_edge_level;
+  }
 }
 
 // The appearance rule's readings for a pair, and its factor on the confidence.
@@ -428,8 +459,13 @@ bool FaceContinuesAt(const RowProfile* rows, const std::vector<Footprint>& footp
   const double sign = pair.interior - 0.5 * (pair.left_flank + pair.right_flank);
   if (std::isnan(i) || std::isnan(l) || std::isnan(r) || std::isnan(sign)) return false;
   const double dl = i - l, dr = i - r;
-  return dl * sign > 0.0 && dr * sign > 0.0 &&
-         std::min(std::abs(dl), std::abs(dr)) >= min_contrast;
+  // A line's foot may lie off its column at the processed rows (roll, lens): its side is not
+  // read there, the face's other side decides.
+  const bool left_ok =
+      footprints[pair.left_index].line || (dl * sign > 0.0 && std::abs(dl) >= min_contrast);
+  const bool right_ok =
+      footprints[pair.right_index].line || (dr * sign > 0.0 && std::abs(dr) >= min_contrast);
+  return left_ok && right_ok;
 }
 
 // Whether the pair's interior keeps its level over every row of the head band (no head:
@@ -450,7 +486,9 @@ double PairConfidence(const Footprint& l, const Footprint& r, int n_rows,
                       const RibbonDetectorParams& params) {
   const double persistence = (static_cast<double>(l.rows_hit) / n_rows) *
                              (static_cast<double>(r.rows_hit) / n_rows);
-  const double polarity = l.polarity != r.polarity ? 1.0 : params.same_polarity_factor;
+  // A line has both polarities: it bounds a face whichever way the other edge steps.
+  const double polarity =
+      l.line || r.line || l.polarity != r.polarity ? 1.0 : params.same_polarity_factor;
   if (params.confidence == RibbonDetectorParams::Confidence::kEnergyShare) {
     return std::sqrt(l.weight * r.weight) * persistence * polarity;
   }
@@ -591,10 +629,12 @@ RibbonDetector::RibbonDetector(RibbonDetectorParams params) : params_(params) {
   }
   if (!(p.min_edge_level >= 0.0) || !(p.min_pair_width_px >= 0.0) ||
       !(p.max_pair_width_px > p.min_pair_width_px) ||
-      !(p.same_polarity_factor >= 0.0 && p.same_polarity_factor <= 1.0) || p.max_pairs < 0) {
+      !(p.same_polarity_factor >= 0.0 && p.same_polarity_factor <= 1.0) || p.max_pairs < 0 ||
+      !(p.line_side_agreement >= 0.0)) {
     throw std::invalid_argument(
         "ribbon detector: need min_edge_level >= 0, 0 <= min_pair_width_px < "
-        "max_pair_width_px, same_polarity_factor in [0, 1], max_pairs >= 0");
+        "max_pair_width_px, same_polarity_factor in [0, 1], max_pairs >= 0, "
+        "line_side_agreement >= 0");
   }
 }
 
@@ -717,6 +757,7 @@ DetectResult RibbonDetector::Run(const std::uint8_t* data, int width, int height
   }
   det.width_limits = limits;
   const RowProfile profile(data, width, step, det.rows);
+  if (params_.seam_lines) MarkLines(profile, params_, &det.footprints);
   std::vector<RowProfile> head_band;
   std::unique_ptr<RowProfile> foot;
   if (five_rows && params_.appearance_rule) {

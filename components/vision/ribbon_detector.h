@@ -82,6 +82,15 @@ struct RibbonDetectorParams {
   // not the two sides of one face (constraint C2, §5.1: the landmark contrasts with its
   // surroundings) but are kept at this share of their confidence in case of clutter.
   double same_polarity_factor = 0.5;
+  // A thin line (a double door's seam, a gap between two leaves) is one clump holding both
+  // polarities, with the wall or leaf at one level on both sides. It bounds a face (each leaf
+  // of a closed double door is framed by its casing and the seam), but it is not a step:
+  // its polarity says nothing, and the face's flank on that side is the line itself, not
+  // the other leaf beyond it. A footprint is such a line when the levels just either side
+  // of its clump agree within line_side_agreement grey levels and the clump's core differs
+  // from both, the same way, by at least min_edge_level. Off: every footprint is a step.
+  bool seam_lines = true;
+  double line_side_agreement = 12.0;
   int max_pairs = 32;
 
   // How a pair's confidence is formed.
@@ -150,6 +159,7 @@ struct Footprint {
   double strength = 0.0;   // summed thresholded response (grey levels) in the clump
   int rows_hit = 0;        // processed rows with a thresholded pixel in the clump
   int polarity = 0;        // +1 brightening left to right, -1 darkening
+  bool line = false;       // a thin line, not a step (RibbonDetectorParams::seam_lines)
   double contrast = 0.0;   // mean over the rows hit of the row's peak |response|, grey levels
   int first_bin = 0;       // column span of the clump
   int last_bin = 0;

@@ -111,6 +111,40 @@ TEST(RibbonDetectorTest, ThinLineGivesOneFootprintCentredOnIt) {
   EXPECT_THAT(result.detection.footprints[0].column_px, DoubleNear(300.0, 1e-9));
 }
 
+TEST(RibbonDetectorTest, ThinLineIsMarkedALineAndAStepIsNot) {
+  cv::Mat image = Band(100, 511, 70, 125);         // a dark casing, then a leaf from column 100
+  image.colRange(300, 303).setTo(cv::Scalar(40));  // a 3 px seam on the leaf
+  const DetectResult result = RibbonDetector().Detect(image, 60.0);
+  ASSERT_TRUE(result.ok()) << result.message;
+  ASSERT_THAT(result.detection.footprints, SizeIs(2));
+  EXPECT_FALSE(result.detection.footprints[0].line);  // the step from casing to leaf
+  EXPECT_TRUE(result.detection.footprints[1].line);
+  EXPECT_THAT(result.detection.footprints[1].column_px, DoubleNear(301.0, 1.5));
+  // The leaf between them is a face framed by the casing and the seam: the pair scores as
+  // one of opposite polarity with the seam's level as its right flank.
+  ASSERT_THAT(result.detection.pairs, SizeIs(1));
+  const CandidatePair& leaf = result.detection.pairs[0];
+  EXPECT_THAT(leaf.right_flank, DoubleNear(40.0, 5.0));
+  RibbonDetectorParams steps_only;
+  steps_only.seam_lines = false;
+  const DetectResult before = RibbonDetector(steps_only).Detect(image, 60.0);
+  ASSERT_TRUE(before.ok());
+  ASSERT_THAT(before.detection.pairs, SizeIs(1));
+  EXPECT_FALSE(before.detection.footprints[1].line);
+  EXPECT_LT(before.detection.pairs[0].confidence, 0.75 * leaf.confidence);
+}
+
+TEST(RibbonDetectorTest, AStepBetweenTwoLevelsIsNotALine) {
+  // A narrow light strip between a dark casing and a darker leaf: each edge is a step
+  // between two different levels, however close together.
+  cv::Mat image = Band(200, 511, 175, 70);
+  image.colRange(204, 512).setTo(cv::Scalar(125));
+  const DetectResult result = RibbonDetector().Detect(image, 60.0);
+  ASSERT_TRUE(result.ok());
+  ASSERT_FALSE(result.detection.footprints.empty());
+  for (const Footprint& fp : result.detection.footprints) EXPECT_FALSE(fp.line) << fp.column_px;
+}
+
 TEST(RibbonDetectorTest, ThresholdPassesAtMostTheTopFivePercent) {
   cv::Mat image(480, 512, CV_8UC1);
   cv::RNG rng(9);
@@ -238,6 +272,9 @@ TEST(RibbonDetectorParamsTest, InconsistentParametersThrowAtConstruction) {
   EXPECT_THROW(RibbonDetector{params}, std::invalid_argument);
   params = {};
   params.clump_min_nonempty = 6;
+  EXPECT_THROW(RibbonDetector{params}, std::invalid_argument);
+  params = {};
+  params.line_side_agreement = -1.0;
   EXPECT_THROW(RibbonDetector{params}, std::invalid_argument);
 }
 
