@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <string>
+
 #include "common/input_error.h"
 #include "recovery/test_support.h"
 
@@ -31,6 +34,21 @@ TEST(ErrorModelFile, PaperFileHasTheRatesOfTable610) {
   EXPECT_DOUBLE_EQ(m.wall_false_door, 0.1591);
   EXPECT_TRUE(m.missized_to.empty());
   EXPECT_TRUE(m.false_door_classes.empty());
+}
+
+// Every model file under configs/ loads and validates: a localizer may be pointed at any.
+TEST(ErrorModelFile, EveryShippedModelLoads) {
+  int files = 0;
+  const std::filesystem::path configs = std::string(STICKREP_SOURCE_DIR) + "/configs";
+  for (const auto& entry : std::filesystem::directory_iterator(configs)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("error_model_", 0) != 0 || entry.path().extension() != ".yaml") continue;
+    ++files;
+    SCOPED_TRACE(name);
+    const ErrorModel m = LoadErrorModel(entry.path().string());
+    EXPECT_NEAR(m.door_correct + m.door_missized + m.door_missed, 1.0, 1e-3);  // Table 6.10: 0.9999
+  }
+  EXPECT_GE(files, 6);
 }
 
 TEST(ErrorModelFile, ReadsOptionalDistributions) {

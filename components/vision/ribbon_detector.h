@@ -88,8 +88,9 @@ struct RibbonDetectorParams {
   // its polarity says nothing, and the face's flank on that side is the line itself, not
   // the other leaf beyond it. A footprint is such a line when the levels just either side
   // of its clump agree within line_side_agreement grey levels and the clump's core differs
-  // from both, the same way, by at least min_edge_level. Off: every footprint is a step.
-  bool seam_lines = true;
+  // from both, the same way, by at least min_edge_level. Off (the default, as shipped in
+  // configs/landmark.yaml): every footprint is a step.
+  bool seam_lines = false;
   double line_side_agreement = 12.0;
   int max_pairs = 32;
 

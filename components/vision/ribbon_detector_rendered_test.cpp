@@ -82,11 +82,11 @@ struct Outcome {
 };
 
 Outcome RenderAndDetect(const Scene& scene, const Pose2d& X_WR, CameraModel camera = {},
-                        Illumination light = {}) {
+                        Illumination light = {}, RibbonDetectorParams params = {}) {
   const CameraRenderer renderer(camera);
   std::mt19937_64 rng(kSeed);
   Outcome out{renderer.Render(scene, X_WR, light, rng), {}};
-  out.result = RibbonDetector().Detect(out.frame.image, out.frame.truth.axis_range_in);
+  out.result = RibbonDetector(params).Detect(out.frame.image, out.frame.truth.axis_range_in);
   return out;
 }
 
@@ -158,20 +158,21 @@ TEST(RibbonDetectorRenderedTest, FindsDoubleDoorAtTwelveFeet) {
 
 // At 5 ft a 36/36 is never whole in the 63 in view; its leaves are, each framed by its
 // casing and the seam. Frames 6 in apart while one leaf is whole in view (a pinhole camera,
-// so the seam's column is exact): the leaf is the most confident pair, and it scores as a
-// face against both its casing and the seam, not at the same-polarity discount.
+// so the seam's column is exact): with seam lines on, the leaf is among the two most
+// confident pairs and scores as a face against both its casing and the seam; with every
+// edge a step (the default) it scores under three quarters of that.
 TEST(RibbonDetectorRenderedTest, FindsEachLeafOfADoubleDoorAtFiveFeet) {
   constexpr double kRangeIn = 60.0, kSeamIn = kDoorStartIn + 36.0;
   const Scene scene = DoorScene(72);
   CameraModel camera;
   camera.k1 = 0.0;
   const double f = camera.focal_px();
-  RibbonDetectorParams steps_only;
-  steps_only.seam_lines = false;
+  RibbonDetectorParams seams;
+  seams.seam_lines = true;
   for (const double x : {130.0, 136.0, 142.0, 172.0, 178.0, 184.0}) {
     SCOPED_TRACE("camera at x = " + std::to_string(x));
     const Pose2d X_WR{x, kHallwayWidthIn / 2.0 - kRangeIn, 0.0};
-    const Outcome out = RenderAndDetect(scene, X_WR, camera);
+    const Outcome out = RenderAndDetect(scene, X_WR, camera, {}, seams);
     ASSERT_TRUE(out.result.ok()) << out.result.message;
     ASSERT_EQ(out.frame.truth.jambs.size(), 1u);  // one jamb of the opening in view
     const double jamb = out.frame.truth.jambs[0].column_px;
@@ -182,7 +183,7 @@ TEST(RibbonDetectorRenderedTest, FindsEachLeafOfADoubleDoorAtFiveFeet) {
     ASSERT_GE(k, 0) << "leaf " << left << ", " << right << "; " << Describe(det);
     EXPECT_LT(k, 2) << Describe(det);  // only the casing stripe may outrank it
     EXPECT_GT(det.pairs[k].confidence, 0.6) << Describe(det);
-    const DetectResult before = RibbonDetector(steps_only).Detect(out.frame.image, kRangeIn);
+    const DetectResult before = RibbonDetector().Detect(out.frame.image, kRangeIn);
     const int kb = MatchingPair(before.detection, left, right);
     ASSERT_GE(kb, 0);
     EXPECT_LT(before.detection.pairs[kb].confidence, 0.75 * det.pairs[k].confidence);

@@ -114,7 +114,9 @@ TEST(RibbonDetectorTest, ThinLineGivesOneFootprintCentredOnIt) {
 TEST(RibbonDetectorTest, ThinLineIsMarkedALineAndAStepIsNot) {
   cv::Mat image = Band(100, 511, 70, 125);         // a dark casing, then a leaf from column 100
   image.colRange(300, 303).setTo(cv::Scalar(40));  // a 3 px seam on the leaf
-  const DetectResult result = RibbonDetector().Detect(image, 60.0);
+  RibbonDetectorParams seams;
+  seams.seam_lines = true;
+  const DetectResult result = RibbonDetector(seams).Detect(image, 60.0);
   ASSERT_TRUE(result.ok()) << result.message;
   ASSERT_THAT(result.detection.footprints, SizeIs(2));
   EXPECT_FALSE(result.detection.footprints[0].line);  // the step from casing to leaf
@@ -125,9 +127,7 @@ TEST(RibbonDetectorTest, ThinLineIsMarkedALineAndAStepIsNot) {
   ASSERT_THAT(result.detection.pairs, SizeIs(1));
   const CandidatePair& leaf = result.detection.pairs[0];
   EXPECT_THAT(leaf.right_flank, DoubleNear(40.0, 5.0));
-  RibbonDetectorParams steps_only;
-  steps_only.seam_lines = false;
-  const DetectResult before = RibbonDetector(steps_only).Detect(image, 60.0);
+  const DetectResult before = RibbonDetector().Detect(image, 60.0);  // every edge a step
   ASSERT_TRUE(before.ok());
   ASSERT_THAT(before.detection.pairs, SizeIs(1));
   EXPECT_FALSE(before.detection.footprints[1].line);
@@ -139,7 +139,9 @@ TEST(RibbonDetectorTest, AStepBetweenTwoLevelsIsNotALine) {
   // between two different levels, however close together.
   cv::Mat image = Band(200, 511, 175, 70);
   image.colRange(204, 512).setTo(cv::Scalar(125));
-  const DetectResult result = RibbonDetector().Detect(image, 60.0);
+  RibbonDetectorParams seams;
+  seams.seam_lines = true;
+  const DetectResult result = RibbonDetector(seams).Detect(image, 60.0);
   ASSERT_TRUE(result.ok());
   ASSERT_FALSE(result.detection.footprints.empty());
   for (const Footprint& fp : result.detection.footprints) EXPECT_FALSE(fp.line) << fp.column_px;
