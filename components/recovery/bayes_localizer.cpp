@@ -139,7 +139,7 @@ double BayesLocalizer::Missed(int door) const {
 }
 
 double BayesLocalizer::FalseDoorAt(int wall) const {
-  return model_.confusion.FalseDoor(index_.in_row(wall));
+  return model_.confusion.FalseDoorIn(index_.metric(wall), index_.in_row(wall));
 }
 
 double BayesLocalizer::WallDensity(double measured, double true_len) const {
@@ -567,9 +567,26 @@ void BayesLocalizer::NextFromSecondPart(int s, double p2, const map::SensedEdge&
   const bool door = map::IsDoorCode(e.code);
   const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
   nn_[s] += p2 * eps * unit;
-  if (e.code == map::kWallCode) {
-    const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
+  if (e.code != map::kWallCode) return;
+  const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
+  const Confusion& cf = model_.confusion;
+  const int wall = s / 2;
+  if (!cf.FalseDoorsChain() || index_.in_row(wall)) {
     nn_[s] += p2 * angle * SecondPartDensity(s, e);
+    return;
+  }
+  // The per-inch model: the rest of the wall past the false door holds no other (the wall
+  // ends here) or another (W1 of the rest, anywhere in it, as in NextWallFromEnd).
+  const double rest = std::max(1.0, index_.metric(wall) - c2_[s]);
+  const double pf = cf.FalseDoorIn(rest, false);
+  nn_[s] += p2 * angle * (1.0 - pf) * SecondPartDensity(s, e);
+  if (e.metric_in <= rest) {
+    const double add = p2 * angle * pf / rest * RoomForFalseDoor(rest, e.metric_in);
+    if (add > ni1_[s]) {
+      nc1_[s] = c2_[s] + e.metric_in;
+      nlb1_[s] = lb2_[s];
+    }
+    ni1_[s] += add;
   }
 }
 

@@ -107,7 +107,8 @@ class BayesLocalizer {
   double WallDensity(double measured, double true_len) const;
   // The probability that map door `door` is missed (its class's rate).
   double Missed(int door) const;
-  // The false-door rate of map wall `wall` (in a row of doors or not).
+  // The false-door rate of map wall `wall` (in a row of doors or not; by its length where
+  // the model rates false doors per inch: Confusion::FalseDoorIn).
   double FalseDoorAt(int wall) const;
   void First(const map::SensedEdge& e);
   // Weighs the belief after a sensed door by how its leaf's mark was read at each map edge
@@ -137,6 +138,8 @@ class BayesLocalizer {
   // having held a leaf of class c of door d, summed over c when c < 0.
   double LeafWallWeight(int door, int c, double wall_in, double len) const;
   void NextFromFirstPart(int s, double p1, const map::SensedEdge& e);
+  // W2 after a false door: the wall ends there, or (the per-inch model) the rest of the wall
+  // holds another false door and the sensed wall is its W1.
   void NextFromSecondPart(int s, double p2, const map::SensedEdge& e);
   // A wall's first part W1 is taken uniform over the whole wall; the ribbon of a false door
   // after it must still lie inside the wall. Without that, a wall sensed whole followed by a

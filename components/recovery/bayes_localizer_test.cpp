@@ -235,6 +235,69 @@ TEST_F(BayesLocalizerTest, ExplainsAFalseDoorThatSplitsAWall) {
   EXPECT_GT(b.best().probability, 0.9);
 }
 
+// A corridor with one long wall (edge 2, 600 in) and short ones:
+//   0 W120 1 D36 2 W600 3 D40 4 W120 5 D32 6 W200 7 D30 8 W100 9 D36 10 W80 11 D40 12 W150
+map::Map CorridorWithALongWall() {
+  using map::Edge;
+  return testing::ClosedCorridor(
+      {Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(600), Edge::Door(DoorClass::k40),
+       Edge::Wall(120), Edge::Door(DoorClass::k32), Edge::Wall(200), Edge::Door(DoorClass::k30),
+       Edge::Wall(100), Edge::Door(DoorClass::k36), Edge::Wall(80), Edge::Door(DoorClass::k40),
+       Edge::Wall(150)},
+      {0, 12});
+}
+
+// The belief in the truth after the long wall is sensed with two false doors in it, 150 +
+// 30 + 170 + 32 + 218 in, and the walk goes on to the 40 in door and the wall after it.
+double TruthAfterTwoFalseDoors(const map::MatchIndex& index, const ErrorModel& em) {
+  BayesLocalizer b = MakeLocalizer(index, em);
+  for (const map::SensedEdge& e :
+       {Wall(100, kNaN, true), Door(DoorClass::k36), Wall(150), Door(DoorClass::k30), Wall(170),
+        Door(DoorClass::k32), Wall(218), Door(DoorClass::k40), Wall(120)}) {
+    b.Add(e);
+  }
+  return b.PoseProbability(4, +1);
+}
+
+TEST(BayesLocalizerFalseDoorTest, ARatePerInchExplainsTwoFalseDoorsInALongWall) {
+  const map::Map map = CorridorWithALongWall();
+  const map::MatchIndex index(map);
+  const ErrorModel per_wall = ErrorModel::Paper();
+  ErrorModel per_inch = per_wall;
+  // About the paper's 0.16 per wall on a 120 in wall; 0.6 on the 600 in one.
+  per_inch.wall_false_door_per_in = 0.0015;
+  per_inch.Validate();
+  const Confusion cf = Resolve(per_inch, index);
+  EXPECT_NEAR(cf.FalseDoorIn(120.0, false), 1.0 - std::exp(-0.18), 1e-12);
+  EXPECT_GT(cf.FalseDoorIn(600.0, false), 3.0 * cf.FalseDoorIn(120.0, false));
+  EXPECT_EQ(Resolve(per_wall, index).FalseDoorIn(600.0, false), per_wall.wall_false_door);
+
+  // One false door per wall at most: the second is one of the outliers, and the truth is
+  // not sure. With the rate per inch the rest of the wall holds the second.
+  const double before = TruthAfterTwoFalseDoors(index, per_wall);
+  const double after = TruthAfterTwoFalseDoors(index, per_inch);
+  EXPECT_GT(after, 0.9);
+  EXPECT_GT(after, before + 0.2) << "before " << before << ", after " << after;
+}
+
+TEST(BayesLocalizerFalseDoorTest, ARatePerInchKeepsThePosteriorNormalised) {
+  const map::Map map = CorridorWithALongWall();
+  const map::MatchIndex index(map);
+  ErrorModel per_inch = ErrorModel::Paper();
+  per_inch.wall_false_door_per_in = 0.0015;
+  BayesLocalizer b = MakeLocalizer(index, per_inch);
+  for (const map::SensedEdge& e :
+       {Wall(100, kNaN, true), Door(DoorClass::k36), Wall(150), Door(DoorClass::k30), Wall(170),
+        Door(DoorClass::k32), Wall(218), Door(DoorClass::k40)}) {
+    b.Add(e);
+    double sum = 0.0;
+    for (int g = 0; g < index.EdgeCount(); ++g) {
+      sum += b.PoseProbability(g, +1) + b.PoseProbability(g, -1);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-9);
+  }
+}
+
 // The 90 in wall is sensed whole; the 36 in door after it cannot be a false door inside
 // that wall (90 + 36 > 90). With the fit, the wall's place keeps only what an unexplained
 // edge leaves there, however often such walls and doors repeat; without it (the study's

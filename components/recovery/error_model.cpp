@@ -119,6 +119,11 @@ void ErrorModel::Validate() const {
   if (!false_door_classes.empty() && std::abs(s - 1.0) > kSumTolerance) {
     throw std::invalid_argument("false_door_classes sums to " + Num(s) + ", not 1");
   }
+  if (wall_false_door_per_in &&
+      !(*wall_false_door_per_in >= 0.0 && *wall_false_door_per_in <= 0.1)) {
+    throw std::invalid_argument("wall_false_door_per_in is " + Num(*wall_false_door_per_in) +
+                                ", not in [0, 0.1]");
+  }
   ValidateClassRates(by_class, "by_class.");
   if (in_row) {
     if (in_row->wall_false_door)
@@ -240,6 +245,9 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
   m.door_missized = node.Get<double>("door_missized", 0.0, 1.0);
   m.door_missed = node.Get<double>("door_missed", 0.0, 1.0);
   m.wall_false_door = node.Get<double>("wall_false_door", 0.0, 1.0);
+  if (node.Has("wall_false_door_per_in")) {
+    m.wall_false_door_per_in = node.Get<double>("wall_false_door_per_in", 0.0, 0.1, "1/in");
+  }
   const double sum = m.door_correct + m.door_missized + m.door_missed;
   if (std::abs(sum - 1.0) > kSumTolerance) {
     node.Fail("door_missed", "door_correct + door_missized + door_missed = " + Num(sum) +
@@ -329,6 +337,12 @@ static void MixUnsurveyed(const ErrorModel& model, const map::MatchIndex& index,
   }
 }
 
+double Confusion::FalseDoorIn(double len_in, bool row) const {
+  if (false_door_per_in <= 0.0) return row ? row_false_door : false_door;
+  if (row && row_false_door_own) return row_false_door;
+  return -std::expm1(-false_door_per_in * std::max(0.0, len_in));
+}
+
 Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   Confusion c;
   c.correct = model.door_correct;
@@ -336,8 +350,11 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   c.missed = model.door_missed;
   c.false_door = model.wall_false_door;
   c.row_false_door = c.false_door;
-  if (model.in_row && model.in_row->wall_false_door)
+  c.false_door_per_in = model.wall_false_door_per_in.value_or(0.0);
+  if (model.in_row && model.in_row->wall_false_door) {
     c.row_false_door = *model.in_row->wall_false_door;
+    c.row_false_door_own = true;
+  }
   for (int k = 0; k < kDoorClasses; ++k) {
     const auto it = model.by_class.find(static_cast<DoorClass>(k));
     const bool own = it != model.by_class.end();
@@ -613,6 +630,9 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
   out += "  door_missized: " + number(m.door_missized) + "\n";
   out += "  door_missed: " + number(m.door_missed) + "\n";
   out += "  wall_false_door: " + number(m.wall_false_door) + "\n";
+  if (m.wall_false_door_per_in) {
+    out += "  wall_false_door_per_in: " + number(*m.wall_false_door_per_in) + "\n";
+  }
   std::string missized = "{";
   for (const auto& [c, row] : m.missized_to) {
     missized += (missized.size() > 1 ? ", \"" : "\"") + std::string(map::DoorClassName(c)) +

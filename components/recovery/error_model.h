@@ -40,6 +40,14 @@ struct ErrorModel {
   double door_missized = 0.1020;    // true positives sensed with a wrong class
   double door_missed = 0.0612;      // false negatives
   double wall_false_door = 0.1591;  // false positives, per wall edge
+  // False doors per inch of wall, where the file gives it (the walls of a row keep
+  // in_row's rate per wall). A wall of length L then holds a false door with probability
+  // 1 - exp(-rate L), and the rest of a wall past a false door may hold another alike; without
+  // it every wall holds one at most, at wall_false_door. The pipeline reads a false door on a
+  // stretch of wall (a panel, a poster, a shadow), so a long wall holds more: measured on the
+  // science hall, 16 % of the walls of 60-120 in and 123 % of those of 480-960 in
+  // (docs/whereami.md). The study's sampler keeps wall_false_door.
+  std::optional<double> wall_false_door_per_in;
   // Per true class, its own door rates where they differ from the ones above (a double door
   // is read as one leaf far more often than a single door is mis-sized). Each sums to 1.
   struct DoorRates {
@@ -116,12 +124,21 @@ struct Confusion {
   // (ErrorModel::in_row; the rates above where the model has none).
   ClassVector row_correct{}, row_missized{}, row_missed{};
   double row_false_door = 0;
+  bool row_false_door_own = false;  // the model gives the walls of a row their own rate
   // The rates of a map door of class index `k`, in a row or not (MatchIndex::in_row).
   double Correct(int k, bool row) const { return row ? row_correct[k] : class_correct[k]; }
   double Missized(int k, bool row) const { return row ? row_missized[k] : class_missized[k]; }
   double Missed(int k, bool row) const { return row ? row_missed[k] : class_missed[k]; }
   // The false-door rate of a map wall, between two doors of a row or not.
   double FalseDoor(bool row) const { return row ? row_false_door : false_door; }
+  // ErrorModel::wall_false_door_per_in, 0 when the model rates false doors per wall.
+  double false_door_per_in = 0;
+  // The probability that a map wall of `len_in` (between two doors of a row or not) holds a
+  // false door: by its length where the model rates false doors per inch (but a row's short
+  // walls with a rate of their own), else per wall.
+  double FalseDoorIn(double len_in, bool row) const;
+  // Whether the rest of a wall past a false door may hold another (the per-inch model).
+  bool FalseDoorsChain() const { return false_door_per_in > 0.0; }
   ClassMatrix missized_to{};  // [true][sensed], each row sums to 1
   ClassVector false_class{};  // sums to 1
   ClassVector map_prior{};    // the map's door-class frequencies (sum 1, or all 0)

@@ -161,6 +161,29 @@ TEST(ErrorModelFile, ReadsTheRatesOfDoorsInARow) {
   EXPECT_DOUBLE_EQ(plain.FalseDoor(true), plain.FalseDoor(false));
 }
 
+TEST(ErrorModelFile, ReadsAFalseDoorRatePerInchAndWritesItBack) {
+  const ErrorModel m = ParseErrorModel(Model("  wall_false_door_per_in: 0.002\n"), "m.yaml");
+  ASSERT_TRUE(m.wall_false_door_per_in.has_value());
+  EXPECT_DOUBLE_EQ(*m.wall_false_door_per_in, 0.002);
+  const Confusion c = Resolve(m, map::MatchIndex(testing::CorridorMap()));
+  EXPECT_NEAR(c.FalseDoorIn(100.0, false), 1.0 - std::exp(-0.2), 1e-12);
+  EXPECT_TRUE(c.FalseDoorsChain());
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  EXPECT_EQ(back.wall_false_door_per_in, m.wall_false_door_per_in);
+  // Without the key, per wall as before.
+  const ErrorModel plain = ParseErrorModel(Model(""), "p.yaml");
+  EXPECT_FALSE(plain.wall_false_door_per_in.has_value());
+  EXPECT_FALSE(Resolve(plain, map::MatchIndex(testing::CorridorMap())).FalseDoorsChain());
+  EXPECT_EQ(FormatErrorModelYaml(plain, "x").find("per_in"), std::string::npos);
+  try {
+    ParseErrorModel(Model("  wall_false_door_per_in: -0.001\n"), "bad.yaml");
+    FAIL() << "accepted a negative rate";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.yaml:7"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("wall_false_door_per_in"), std::string::npos);
+  }
+}
+
 TEST(ErrorModelFile, BadRatesOfDoorsInARowAreRejectedWithTheirKey) {
   try {
     ParseErrorModel(Model("  in_row:\n    by_class:\n"

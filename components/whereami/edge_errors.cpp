@@ -6,6 +6,17 @@
 #include <optional>
 
 namespace stickrep::whereami {
+namespace {
+
+// The bin of EdgeErrorCounts::walls_by_length a wall of `length_in` counts in.
+std::size_t WallLengthBin(double length_in) {
+  const auto& bins = EdgeErrorCounts::kWallLengthBinsIn;
+  std::size_t b = 0;
+  while (b + 1 < bins.size() && length_in >= bins[b + 1]) ++b;
+  return b;
+}
+
+}  // namespace
 
 void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
   true_doors += o.true_doors;
@@ -36,6 +47,12 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
     for (int k = 0; k < map::kDoorClassCount; ++k) add(by_row[r][k], o.by_row[r][k]);
     walls_by_row[r].walls += o.walls_by_row[r].walls;
     walls_by_row[r].false_doors += o.walls_by_row[r].false_doors;
+    walls_by_row[r].wall_in += o.walls_by_row[r].wall_in;
+  }
+  for (std::size_t b = 0; b < walls_by_length.size(); ++b) {
+    walls_by_length[b].walls += o.walls_by_length[b].walls;
+    walls_by_length[b].false_doors += o.walls_by_length[b].false_doors;
+    walls_by_length[b].wall_in += o.walls_by_length[b].wall_in;
   }
   for (int t = 0; t < map::kDoorMarkCount; ++t) {
     false_mark[t] += o.false_mark[t];
@@ -94,11 +111,15 @@ void SetClassRates(const EdgeErrorCounts& c, recovery::ErrorModel* m) {
     }
     const double prior = EdgeErrorCounts::kClassPriorDoors;
     const auto walls = [&](const EdgeErrorCounts::WallTally& w) {
-      return (w.false_doors + prior * m->wall_false_door) / (w.walls + prior);
+      return std::min(1.0, (w.false_doors + prior * m->wall_false_door) / (w.walls + prior));
     };
     in_row.wall_false_door = walls(row_walls);
     m->wall_false_door = walls(c.walls_by_row[0]);
     m->in_row = in_row;
+  }
+  const EdgeErrorCounts::WallTally& other_walls = c.walls_by_row[0];
+  if (other_walls.wall_in > 0.0) {
+    m->wall_false_door_per_in = other_walls.false_doors / other_walls.wall_in;
   }
 }
 
@@ -144,7 +165,10 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
   m.door_correct = correct / doors;
   m.door_missized = missized / doors;
   m.door_missed = missed / doors;  // the three add up: every true door is one of them
-  m.wall_false_door = static_cast<double>(false_doors) / std::max<long>(1, true_walls);
+  // False doors per wall; a wall may hold more than one (a long wall read with two), but
+  // the rate per wall is a probability, at most 1 (the rate per inch counts them all).
+  m.wall_false_door =
+      std::min(1.0, static_cast<double>(false_doors) / std::max<long>(1, true_walls));
   for (int t = 0; t < map::kDoorClassCount; ++t) {
     long row = 0;
     for (long n : missized_to[t]) row += n;
@@ -367,9 +391,14 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       ++c.true_walls;
       EdgeErrorCounts::WallTally& walls = c.walls_by_row[map::InDoorRow(view_ring, passed[p].edge)];
       ++walls.walls;
+      walls.wall_in += edge.metric_in;
+      EdgeErrorCounts::WallTally& by_length = c.walls_by_length[WallLengthBin(edge.metric_in)];
+      ++by_length.walls;
+      by_length.wall_in += edge.metric_in;
       if (it == doors_on.end()) continue;
       for (std::size_t k : it->second) {
         ++walls.false_doors;
+        ++by_length.false_doors;
         AddFalseDoor(sensed[k], &c);
       }
     }

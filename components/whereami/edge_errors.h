@@ -54,8 +54,15 @@ struct EdgeErrorCounts {
   std::array<std::array<DoorTally, map::kDoorClassCount>, 2> by_row{};
   struct WallTally {
     long walls = 0, false_doors = 0;
+    double wall_in = 0.0;  // the walls' lengths summed
   };
   std::array<WallTally, 2> walls_by_row{};
+  // The true walls and the false doors sensed on them by the wall's length (its view edge's
+  // metric): bin b holds lengths in [kWallLengthBinsIn[b], kWallLengthBinsIn[b + 1]), the
+  // last bin every longer wall. A false door is read on a stretch of wall, so a rate per
+  // wall hides how it grows with the wall's length.
+  static constexpr std::array<double, 6> kWallLengthBinsIn{0.0, 60.0, 120.0, 240.0, 480.0, 960.0};
+  std::array<WallTally, kWallLengthBinsIn.size()> walls_by_length{};
   // How the leaves' marks were read (Table 6.8): [true mark][read mark] over the sensed doors
   // on a true door, sensed with their class and mis-sized (both leaves of a split double
   // door), and the reads of false doors.
@@ -70,7 +77,9 @@ struct EdgeErrorCounts {
   // short walls between doors were passed, the rates are split (ErrorModel::in_row): each
   // class's doors alone and in a row, shrunk likewise towards the class's rates, and the
   // false doors of those short walls and of the other walls, shrunk towards all walls'
-  // by as many walls' worth. The mark rows are the
+  // by as many walls' worth; the false doors per inch of the walls not in a row
+  // (ErrorModel::wall_false_door_per_in) are their count over those walls' length. The
+  // mark rows are the
   // read shares of each true mark seen (mis-sized reads shrunk likewise towards the reads
   // with the class right), and of the false doors.
   static constexpr double kClassPriorDoors = 20.0;

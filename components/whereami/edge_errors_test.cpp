@@ -123,7 +123,14 @@ TEST(EdgeErrorsTest, TalliesDoorsInARowApartFromDoorsAloneAndTheShortWallsBetwee
   EXPECT_EQ(c.walls_by_row[1].false_doors, 1);
   EXPECT_EQ(c.walls_by_row[0].walls, 1);
   EXPECT_EQ(c.walls_by_row[0].false_doors, 0);
+  EXPECT_EQ(c.walls_by_row[0].wall_in, 100.0);
+  EXPECT_EQ(c.walls_by_row[1].wall_in, 92.0);
   EXPECT_EQ(c.false_doors, 1);
+  // By length: the two 46 in walls (one false door) and the 100 in one.
+  EXPECT_EQ(c.walls_by_length[0].walls, 2);
+  EXPECT_EQ(c.walls_by_length[0].false_doors, 1);
+  EXPECT_EQ(c.walls_by_length[1].walls, 1);
+  EXPECT_EQ(c.walls_by_length[1].false_doors, 0);
   // The tallies add up over runs.
   EdgeErrorCounts sum = c;
   sum.Add(c);
@@ -144,6 +151,45 @@ TEST(EdgeErrorsTest, TalliesDoorsInARowApartFromDoorsAloneAndTheShortWallsBetwee
   EXPECT_NEAR(m.by_class.at(map::DoorClass::k36_36).correct, class72, 1e-12);
   EXPECT_NEAR(*m.in_row->wall_false_door, (1 + k / 3) / (2 + k), 1e-12);
   EXPECT_NEAR(m.wall_false_door, (0 + k / 3) / (1 + k), 1e-12);
+  // Per inch: the other walls' false doors over their length (none on 100 in).
+  ASSERT_TRUE(m.wall_false_door_per_in.has_value());
+  EXPECT_EQ(*m.wall_false_door_per_in, 0.0);
+  EXPECT_NO_THROW(m.Validate());
+}
+
+TEST(EdgeErrorsTest, FalseDoorsPerInchAreCountedOverTheLengthOfTheWallsOutsideRows) {
+  // W100, D36, W300, D36, W200, D36, W100: two false doors on the 300 in wall, one on the
+  // 200 in wall.
+  map::Ring ring;
+  ring.id = "long";
+  ring.edges = {map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36),
+                map::Edge::Wall(300), map::Edge::Door(map::DoorClass::k36),
+                map::Edge::Wall(200), map::Edge::Door(map::DoorClass::k36),
+                map::Edge::Wall(100)};
+  const std::vector<TruthSample> truth = TruthEveryInch(ring);
+  const map::SymbolCode door36 = map::DoorCode(map::DoorClass::k36);
+  const map::SymbolCode door30 = map::DoorCode(map::DoorClass::k30);
+  const auto wall = [](double in) { return Sensed(map::kWallCode, in, DoorMark::kUnknown); };
+  const auto door = [](map::SymbolCode code, double in) {
+    return Sensed(code, in, DoorMark::kUnknown);
+  };
+  const std::vector<map::SensedEdge> sensed = {
+      wall(100),        door(door36, 36), wall(60),         door(door30, 30), wall(80),
+      door(door30, 30), wall(100),        door(door36, 36), wall(120),        door(door30, 30),
+      wall(50),         door(door36, 36), wall(100)};
+  const std::vector<localizer::EdgeAssembler::Span> spans = {
+      {0, 100},   {100, 136}, {136, 196}, {196, 226}, {226, 306}, {306, 336}, {336, 436},
+      {436, 472}, {472, 592}, {592, 622}, {622, 672}, {672, 708}, {708, 808}};
+  const EdgeErrorCounts c = CompareWithTruth(ring, sensed, spans, truth, 0.0, 808.0);
+  EXPECT_EQ(c.walls_by_row[0].walls, 2);
+  EXPECT_EQ(c.walls_by_row[0].false_doors, 3);
+  EXPECT_EQ(c.walls_by_row[0].wall_in, 500.0);
+  EXPECT_EQ(c.walls_by_length[3].walls, 1);  // 240-480 in: the 300 in wall
+  EXPECT_EQ(c.walls_by_length[3].false_doors, 2);
+  EXPECT_EQ(c.walls_by_length[2].false_doors, 1);  // 120-240 in: the 200 in wall
+  const recovery::ErrorModel m = c.ToModel("test");
+  ASSERT_TRUE(m.wall_false_door_per_in.has_value());
+  EXPECT_DOUBLE_EQ(*m.wall_false_door_per_in, 3.0 / 500.0);
   EXPECT_NO_THROW(m.Validate());
 }
 

@@ -157,6 +157,19 @@ void PrintRowTallies(const EdgeErrorCounts& total, std::ostream& out) {
       "  false doors per true wall: on walls under {:g} in between two doors {}; "
       "on the other walls {}\n",
       map::kRowWallIn, per_wall(total.walls_by_row[1]), per_wall(total.walls_by_row[0]));
+  const EdgeErrorCounts::WallTally& other = total.walls_by_row[0];
+  out << fmt::format("  false doors per 100 in of the other walls: {:.3f} ({} on {:.0f} in)\n",
+                     100.0 * other.false_doors / std::max(1.0, other.wall_in), other.false_doors,
+                     other.wall_in);
+  out << "  false doors per true wall by the wall's length (in):";
+  const auto& bins = EdgeErrorCounts::kWallLengthBinsIn;
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    const std::string range = b + 1 < bins.size() ? fmt::format("{:g}-{:g}", bins[b], bins[b + 1])
+                                                  : fmt::format("{:g}+", bins[b]);
+    out << fmt::format("{} {}", b == 0 ? "" : ";", range) << " "
+        << per_wall(total.walls_by_length[b]);
+  }
+  out << "\n";
 }
 
 // How the leaves' marks (Table 6.8) were read: counts, true mark by row, false doors last.
