@@ -37,8 +37,7 @@ LocalizerComponent::LocalizerComponent(component::Context& ctx, const map::Map& 
   const LocalizerConfig config = MakeLocalizerConfig(settings, matched);
   if (config.method == MatchMethod::kBayes) {
     ctx.log->info("Bayes matcher ({}): error model {}, declared at confidence {} (posterior {})",
-                  settings.observation_for_marked_map ? "the map's doors carry surveyed marks"
-                                                      : "the default model",
+                  ObservationForName(settings.observation_for),
                   settings.observation.error_model_file, settings.observation.localized_confidence,
                   config.bayes.settings.threshold);
   }

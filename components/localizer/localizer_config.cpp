@@ -48,10 +48,38 @@ bool HasSurveyedMarks(const map::Map& m) {
   return false;
 }
 
+const char* ObservationForName(ObservationFor o) {
+  switch (o) {
+    case ObservationFor::kMarkedMap:
+      return "the map's doors carry surveyed marks";
+    case ObservationFor::kNarrowMap:
+      return "the map's hallways are narrow";
+    case ObservationFor::kDefault:
+      break;
+  }
+  return "the default model";
+}
+
+double MapHallwayWidthIn(const map::Map& m, double otherwise) {
+  std::optional<double> widest;
+  for (const map::Ring& ring : m.rings()) {
+    if (ring.width_in && (!widest || *ring.width_in > *widest)) widest = ring.width_in;
+  }
+  return widest.value_or(otherwise);
+}
+
 LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m) {
-  settings.observation_for_marked_map = settings.on_marked_maps && HasSurveyedMarks(m);
-  if (settings.observation_for_marked_map) settings.observation = *settings.on_marked_maps;
+  settings.observation_for = ObservationFor::kDefault;
+  if (settings.on_marked_maps && HasSurveyedMarks(m)) {
+    settings.observation = *settings.on_marked_maps;
+    settings.observation_for = ObservationFor::kMarkedMap;
+  } else if (settings.on_narrow_maps && MapHallwayWidthIn(m, settings.view.hallway_width_in) <=
+                                            settings.on_narrow_maps->max_hallway_width_in) {
+    settings.observation = settings.on_narrow_maps->observation;
+    settings.observation_for = ObservationFor::kNarrowMap;
+  }
   settings.on_marked_maps.reset();
+  settings.on_narrow_maps.reset();
   return settings;
 }
 
@@ -93,6 +121,14 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
     const StrictYaml marked = c.Child("on_marked_maps");
     s.on_marked_maps = LoadObservation(marked, s.bayes_keep_threshold);
     marked.Finish();
+  }
+  if (c.Has("on_narrow_maps")) {
+    const StrictYaml narrow = c.Child("on_narrow_maps");
+    NarrowMapSettings n;
+    n.max_hallway_width_in = narrow.Get<double>("max_hallway_width_in", 24.0, 600.0, "in");
+    n.observation = LoadObservation(narrow, s.bayes_keep_threshold);
+    narrow.Finish();
+    s.on_narrow_maps = n;
   }
   c.Finish();
   return s;

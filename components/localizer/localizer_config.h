@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -31,18 +32,33 @@ struct ObservationSettings {
   int bayes_max_missed_doors = 2;
 };
 
+// The observation model for a map whose hallways are narrow: the landmark pipeline reads a
+// wall seen from nearer than the Engineering Building's 120 in hallways (more doors cut by
+// the image side, a faster sweep of the wall per foot), so its errors were measured there.
+struct NarrowMapSettings {
+  // A map is narrow when its widest hallway (MapHallwayWidthIn) is at most this.
+  double max_hallway_width_in = 0.0;
+  ObservationSettings observation;
+};
+
+// Which of the configured observation models ForMap chose.
+enum class ObservationFor : std::uint8_t { kDefault, kMarkedMap, kNarrowMap };
+const char* ObservationForName(ObservationFor o);
+
 // The localizer process's settings (configs/localizer.yaml). The Bayes matcher's
 // observation model is read from the files named here once the map is known
 // (MakeLocalizerConfig).
 struct LocalizerSettings {
   LocalizerConfig localizer;   // everything but the Bayes model
   map::HallwayViewConfig view;
-  // The observation model for a map whose doors carry no surveyed marks, and the one for a
-  // map whose doors do (Table 6.8), if it differs: ForMap picks one.
+  // The observation model for a map whose doors carry no surveyed marks, the one for a map
+  // whose doors do (Table 6.8) and the one for a map of narrow hallways, where they differ:
+  // ForMap picks one.
   ObservationSettings observation;
   std::optional<ObservationSettings> on_marked_maps;
-  // Set by ForMap: `observation` is the on_marked_maps model.
-  bool observation_for_marked_map = false;
+  std::optional<NarrowMapSettings> on_narrow_maps;
+  // Set by ForMap: which model `observation` is.
+  ObservationFor observation_for = ObservationFor::kDefault;
   std::string study_file;
   double publish_rate_hz = 2.0;
   // The probability that a sensed edge is one the error model cannot explain (replaces the
@@ -62,11 +78,17 @@ struct LocalizerSettings {
 // Whether any door of `m` carries a surveyed mark (DoorMarkOfPattern is not kUnknown).
 bool HasSurveyedMarks(const map::Map& m);
 
+// The width of the widest hallway of `m` among its rings that give one (map format 2's
+// `width_in`); `otherwise` when none does (the view's default hallway width).
+double MapHallwayWidthIn(const map::Map& m, double otherwise);
+
 // `settings` with the observation model for `m`: on_marked_maps where it is set and `m` has
-// surveyed marks (then observation_for_marked_map is set), the default one otherwise.
+// surveyed marks; else on_narrow_maps where it is set and `m`'s widest hallway is within its
+// max_hallway_width_in; else the default one. observation_for says which.
 LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m);
 
-// Reads the `localizer` section; every key required but `on_marked_maps`, unknown keys
+// Reads the `localizer` section; every key required but the `on_marked_maps` and
+// `on_narrow_maps` blocks (the latter's `max_hallway_width_in` with the others), unknown keys
 // rejected (InputError with file, line and key).
 LocalizerSettings LoadLocalizerSettings(const StrictYaml& section);
 

@@ -1,11 +1,13 @@
 // The localizer's settings: which observation model a map gets (ForMap), and the
-// `on_marked_maps` block's keys.
+// `on_marked_maps` and `on_narrow_maps` blocks' keys.
 #include "localizer/localizer_config.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "common/config_paths.h"
 #include "common/input_error.h"
@@ -27,10 +29,10 @@ std::string WithMarkedLine(std::string text, const std::string& extra) {
   return text.insert(at + block.size(), "    " + extra + "\n");
 }
 
-map::Map HallWithDoor(const std::string& pattern) {
+map::Map HallWithDoor(const std::string& pattern, std::optional<double> width_in = std::nullopt) {
   return StraightRingMap({map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36, pattern),
                           map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36)},
-                         "hall");
+                         "hall", width_in);
 }
 
 TEST(LocalizerSettingsTest, OnlyADoorWithASurveyedMarkMakesAMarkedMap) {
@@ -59,13 +61,13 @@ TEST(LocalizerSettingsTest, AMarkedMapGetsTheMarkedModelAndAnUnmarkedOneTheDefau
   EXPECT_EQ(on_marked.observation.calibration.slope, marked.calibration.slope);
   EXPECT_EQ(on_marked.observation.calibration.offset, marked.calibration.offset);
   EXPECT_FALSE(on_marked.on_marked_maps.has_value());
-  EXPECT_TRUE(on_marked.observation_for_marked_map);
+  EXPECT_EQ(on_marked.observation_for, ObservationFor::kMarkedMap);
 
   const LocalizerSettings on_plain = ForMap(shipped, HallWithDoor(""));
   EXPECT_EQ(on_plain.observation.error_model_file, shipped.observation.error_model_file);
   EXPECT_EQ(on_plain.observation.bayes_threshold, shipped.observation.bayes_threshold);
   EXPECT_EQ(on_plain.observation.bayes_false_door_fit, shipped.observation.bayes_false_door_fit);
-  EXPECT_FALSE(on_plain.observation_for_marked_map);
+  EXPECT_EQ(on_plain.observation_for, ObservationFor::kDefault);
 
   // The model the settings name is the one the Bayes matcher gets.
   const LocalizerConfig config = MakeLocalizerConfig(on_marked, HallWithDoor("old_window"));
@@ -77,9 +79,71 @@ TEST(LocalizerSettingsTest, AMarkedMapGetsTheMarkedModelAndAnUnmarkedOneTheDefau
 
 TEST(LocalizerSettingsTest, TheShippedFloorsGetTheModelTheirSurveySupports) {
   const std::string maps = DataDir() + "/maps/";
-  EXPECT_TRUE(HasSurveyedMarks(map::LoadMap(maps + "engineering_building_3f.yaml")));
-  EXPECT_FALSE(HasSurveyedMarks(map::LoadMap(maps + "teaching_building_1f.yaml")));
-  EXPECT_FALSE(HasSurveyedMarks(map::LoadMap(maps + "science_hall_2f.yaml")));
+  const map::Map engineering = map::LoadMap(maps + "engineering_building_3f.yaml");
+  const map::Map teaching = map::LoadMap(maps + "teaching_building_1f.yaml");
+  const map::Map science = map::LoadMap(maps + "science_hall_2f.yaml");
+  EXPECT_TRUE(HasSurveyedMarks(engineering));
+  EXPECT_FALSE(HasSurveyedMarks(teaching));
+  EXPECT_FALSE(HasSurveyedMarks(science));
+  // The Engineering Building's rings give no width (the text's 120 in hallways); the
+  // teaching building's corridors are 96 and 88 in, the science hall's 88.
+  EXPECT_EQ(MapHallwayWidthIn(engineering, 120.0), 120.0);
+  EXPECT_EQ(MapHallwayWidthIn(teaching, 120.0), 96.0);
+  EXPECT_EQ(MapHallwayWidthIn(science, 120.0), 88.0);
+
+  const LocalizerSettings shipped = Load(Shipped());
+  EXPECT_EQ(ForMap(shipped, engineering).observation_for, ObservationFor::kMarkedMap);
+  EXPECT_EQ(ForMap(shipped, teaching).observation_for, ObservationFor::kNarrowMap);
+  EXPECT_EQ(ForMap(shipped, science).observation_for, ObservationFor::kNarrowMap);
+  EXPECT_EQ(ForMap(shipped, map::LoadMap(maps + "storefront.yaml")).observation_for,
+            ObservationFor::kDefault);
+}
+
+TEST(LocalizerSettingsTest, ANarrowMapGetsTheNarrowModelUnlessItsDoorsAreMarked) {
+  const LocalizerSettings shipped = Load(Shipped());
+  ASSERT_TRUE(shipped.on_narrow_maps.has_value());
+  const NarrowMapSettings& narrow = *shipped.on_narrow_maps;
+  ASSERT_NE(narrow.observation.error_model_file, shipped.observation.error_model_file);
+  const double at_most = narrow.max_hallway_width_in;
+
+  const LocalizerSettings on_narrow = ForMap(shipped, HallWithDoor("", at_most));
+  EXPECT_EQ(on_narrow.observation_for, ObservationFor::kNarrowMap);
+  EXPECT_EQ(on_narrow.observation.error_model_file, narrow.observation.error_model_file);
+  EXPECT_EQ(on_narrow.observation.bayes_threshold, narrow.observation.bayes_threshold);
+  EXPECT_EQ(on_narrow.observation.calibration.slope, narrow.observation.calibration.slope);
+  EXPECT_FALSE(on_narrow.on_narrow_maps.has_value());
+
+  // An inch wider, or no width given (the default hallway's), is not narrow.
+  EXPECT_EQ(ForMap(shipped, HallWithDoor("", at_most + 1.0)).observation_for,
+            ObservationFor::kDefault);
+  EXPECT_EQ(ForMap(shipped, HallWithDoor("")).observation_for, ObservationFor::kDefault);
+  // Surveyed marks decide first: their model was measured and calibrated with them.
+  EXPECT_EQ(ForMap(shipped, HallWithDoor("old_window", at_most)).observation_for,
+            ObservationFor::kMarkedMap);
+}
+
+TEST(LocalizerSettingsTest, TheNarrowBlockNeedsItsWidthAndRefusesUnknownKeys) {
+  const std::string text = Shipped();
+  const std::string key = "    max_hallway_width_in: ";
+  const auto at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const auto line_end = text.find('\n', at);
+  // The width left out, or a key the block does not take added after it.
+  std::string without = text;
+  without.replace(at, line_end - at, "    # no width");
+  std::string with_unknown = text;
+  with_unknown.insert(line_end + 1, "    bayes_outlier: 0.01\n");
+  for (const auto& [edited, named] :
+       {std::pair{without, "max_hallway_width_in"}, std::pair{with_unknown, "bayes_outlier"}}) {
+    try {
+      Load(edited);
+      FAIL() << "accepted the narrow block without a check on " << named;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
+      EXPECT_THAT(e.what(), HasSubstr("on_narrow_maps"));
+      EXPECT_THAT(e.what(), HasSubstr(named));
+    }
+  }
 }
 
 TEST(LocalizerSettingsTest, WithoutTheBlockEveryMapGetsTheDefault) {
@@ -95,7 +159,7 @@ TEST(LocalizerSettingsTest, WithoutTheBlockEveryMapGetsTheDefault) {
   EXPECT_FALSE(s.on_marked_maps.has_value());
   const LocalizerSettings on_marked = ForMap(s, HallWithDoor("old_window"));
   EXPECT_EQ(on_marked.observation.error_model_file, s.observation.error_model_file);
-  EXPECT_FALSE(on_marked.observation_for_marked_map);
+  EXPECT_EQ(on_marked.observation_for, ObservationFor::kDefault);
 }
 
 TEST(LocalizerSettingsTest, AnUnknownKeyInTheMarkedBlockIsRefusedWithItsPath) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,10 +9,12 @@
 namespace stickrep::localizer {
 
 // A map of one closed ring whose edges lie in a straight line along +x, for tests that
-// only care about the edge sequence.
-inline map::Map StraightRingMap(const std::vector<map::Edge>& edges, const std::string& name) {
+// only care about the edge sequence; `width_in` is the ring's hallway width, if given.
+inline map::Map StraightRingMap(const std::vector<map::Edge>& edges, const std::string& name,
+                                std::optional<double> width_in = std::nullopt) {
   map::Ring ring;
   ring.id = "hall";
+  ring.width_in = width_in;
   ring.edges = edges;
   ring.nodes.resize(edges.size());
   double x = 0.0;
