@@ -29,6 +29,28 @@ std::string WithMarkedLine(std::string text, const std::string& extra) {
   return text.insert(at + block.size(), "    " + extra + "\n");
 }
 
+// The shipped text with an on_narrow_maps block after the on_marked_maps block: the model
+// measured in narrow hallways (configs/error_model_narrow.yaml), the default calibration.
+std::string WithNarrowBlock(std::string text) {
+  const auto marked = text.find("  on_marked_maps:\n");
+  EXPECT_NE(marked, std::string::npos);
+  if (marked == std::string::npos) return text;
+  auto end = text.find("\n  ", marked + 1);
+  while (end != std::string::npos && text.compare(end, 5, "\n    ") == 0) {
+    end = text.find("\n  ", end + 1);
+  }
+  return text.insert(end + 1,
+                     "  on_narrow_maps:\n"
+                     "    max_hallway_width_in: 100\n"
+                     "    error_model_file: error_model_narrow.yaml\n"
+                     "    confidence_calibration_slope: 0.765\n"
+                     "    confidence_calibration_offset: -0.984\n"
+                     "    localized_confidence: 0.955\n"
+                     "    bayes_lost_threshold: 0.001\n"
+                     "    bayes_false_door_fit: false\n"
+                     "    bayes_max_missed_doors: 2\n");
+}
+
 map::Map HallWithDoor(const std::string& pattern, std::optional<double> width_in = std::nullopt) {
   return StraightRingMap({map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36, pattern),
                           map::Edge::Wall(100), map::Edge::Door(map::DoorClass::k36)},
@@ -91,16 +113,24 @@ TEST(LocalizerSettingsTest, TheShippedFloorsGetTheModelTheirSurveySupports) {
   EXPECT_EQ(MapHallwayWidthIn(teaching, 120.0), 96.0);
   EXPECT_EQ(MapHallwayWidthIn(science, 120.0), 88.0);
 
+  // As shipped, no model for narrow hallways: the floors without marks get the default.
   const LocalizerSettings shipped = Load(Shipped());
+  EXPECT_FALSE(shipped.on_narrow_maps.has_value());
   EXPECT_EQ(ForMap(shipped, engineering).observation_for, ObservationFor::kMarkedMap);
-  EXPECT_EQ(ForMap(shipped, teaching).observation_for, ObservationFor::kNarrowMap);
-  EXPECT_EQ(ForMap(shipped, science).observation_for, ObservationFor::kNarrowMap);
-  EXPECT_EQ(ForMap(shipped, map::LoadMap(maps + "storefront.yaml")).observation_for,
+  EXPECT_EQ(ForMap(shipped, teaching).observation_for, ObservationFor::kDefault);
+  EXPECT_EQ(ForMap(shipped, science).observation_for, ObservationFor::kDefault);
+  // With one, both narrow floors get it; the marked floor keeps its own, and a floor of the
+  // text's 120 in hallways the default.
+  const LocalizerSettings narrow = Load(WithNarrowBlock(Shipped()));
+  EXPECT_EQ(ForMap(narrow, engineering).observation_for, ObservationFor::kMarkedMap);
+  EXPECT_EQ(ForMap(narrow, teaching).observation_for, ObservationFor::kNarrowMap);
+  EXPECT_EQ(ForMap(narrow, science).observation_for, ObservationFor::kNarrowMap);
+  EXPECT_EQ(ForMap(narrow, map::LoadMap(maps + "storefront.yaml")).observation_for,
             ObservationFor::kDefault);
 }
 
 TEST(LocalizerSettingsTest, ANarrowMapGetsTheNarrowModelUnlessItsDoorsAreMarked) {
-  const LocalizerSettings shipped = Load(Shipped());
+  const LocalizerSettings shipped = Load(WithNarrowBlock(Shipped()));
   ASSERT_TRUE(shipped.on_narrow_maps.has_value());
   const NarrowMapSettings& narrow = *shipped.on_narrow_maps;
   ASSERT_NE(narrow.observation.error_model_file, shipped.observation.error_model_file);
@@ -123,7 +153,7 @@ TEST(LocalizerSettingsTest, ANarrowMapGetsTheNarrowModelUnlessItsDoorsAreMarked)
 }
 
 TEST(LocalizerSettingsTest, TheNarrowBlockNeedsItsWidthAndRefusesUnknownKeys) {
-  const std::string text = Shipped();
+  const std::string text = WithNarrowBlock(Shipped());
   const std::string key = "    max_hallway_width_in: ";
   const auto at = text.find(key);
   ASSERT_NE(at, std::string::npos);
