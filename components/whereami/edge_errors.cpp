@@ -6,17 +6,6 @@
 #include <optional>
 
 namespace stickrep::whereami {
-namespace {
-
-// The bin of EdgeErrorCounts::walls_by_length a wall of `length_in` counts in.
-std::size_t WallLengthBin(double length_in) {
-  const auto& bins = EdgeErrorCounts::kWallLengthBinsIn;
-  std::size_t b = 0;
-  while (b + 1 < bins.size() && length_in >= bins[b + 1]) ++b;
-  return b;
-}
-
-}  // namespace
 
 void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
   true_doors += o.true_doors;
@@ -317,6 +306,29 @@ void AddFalseDoor(const map::SensedEdge& e, EdgeErrorCounts* c) {
   c->false_mark[static_cast<int>(e.mark)]++;
 }
 
+// The bin of EdgeErrorCounts::walls_by_length a wall of `length_in` counts in.
+std::size_t WallLengthBin(double length_in) {
+  const auto& bins = EdgeErrorCounts::kWallLengthBinsIn;
+  std::size_t b = 0;
+  while (b + 1 < bins.size() && length_in >= bins[b + 1]) ++b;
+  return b;
+}
+
+// A true wall (edge `edge` of the view ring) passed whole, and the sensed doors on it
+// (`on_it`, indices into `sensed`), all false: counted by row and by length.
+void CountWall(const map::Ring& view_ring, int edge, const std::vector<map::SensedEdge>& sensed,
+               const std::vector<std::size_t>& on_it, EdgeErrorCounts* c) {
+  const double length_in = view_ring.edges[edge].metric_in;
+  ++c->true_walls;
+  for (EdgeErrorCounts::WallTally* t : {&c->walls_by_row[map::InDoorRow(view_ring, edge)],
+                                        &c->walls_by_length[WallLengthBin(length_in)]}) {
+    ++t->walls;
+    t->wall_in += length_in;
+    t->false_doors += static_cast<long>(on_it.size());
+  }
+  for (std::size_t k : on_it) AddFalseDoor(sensed[k], c);
+}
+
 }  // namespace
 
 EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
@@ -388,19 +400,8 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
         AddFalseDoor(other, &c);
       }
     } else if (edge.IsWall()) {
-      ++c.true_walls;
-      EdgeErrorCounts::WallTally& walls = c.walls_by_row[map::InDoorRow(view_ring, passed[p].edge)];
-      ++walls.walls;
-      walls.wall_in += edge.metric_in;
-      EdgeErrorCounts::WallTally& by_length = c.walls_by_length[WallLengthBin(edge.metric_in)];
-      ++by_length.walls;
-      by_length.wall_in += edge.metric_in;
-      if (it == doors_on.end()) continue;
-      for (std::size_t k : it->second) {
-        ++walls.false_doors;
-        ++by_length.false_doors;
-        AddFalseDoor(sensed[k], &c);
-      }
+      static const std::vector<std::size_t> kNone;
+      CountWall(view_ring, passed[p].edge, sensed, it == doors_on.end() ? kNone : it->second, &c);
     }
   }
   CountWallErrors(view_ring, sensed, passed, matched, &c);
