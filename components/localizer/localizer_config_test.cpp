@@ -29,17 +29,25 @@ std::string WithMarkedLine(std::string text, const std::string& extra) {
   return text.insert(at + block.size(), "    " + extra + "\n");
 }
 
-// The shipped text with an on_narrow_maps block after the on_marked_maps block: the model
-// measured in narrow hallways (configs/error_model_narrow.yaml), the default calibration.
-std::string WithNarrowBlock(std::string text) {
-  const auto marked = text.find("  on_marked_maps:\n");
-  EXPECT_NE(marked, std::string::npos);
-  if (marked == std::string::npos) return text;
-  auto end = text.find("\n  ", marked + 1);
+// Where the on_marked_maps block of `text` begins and ends (the offset past its last line);
+// begin is npos when there is none.
+std::pair<std::size_t, std::size_t> MarkedBlock(const std::string& text) {
+  const auto begin = text.find("  on_marked_maps:\n");
+  if (begin == std::string::npos) return {begin, begin};
+  auto end = text.find("\n  ", begin + 1);
   while (end != std::string::npos && text.compare(end, 5, "\n    ") == 0) {
     end = text.find("\n  ", end + 1);
   }
-  return text.insert(end + 1,
+  return {begin, end == std::string::npos ? text.size() : end + 1};
+}
+
+// The shipped text with an on_narrow_maps block after the on_marked_maps block: the model
+// measured in narrow hallways (configs/error_model_narrow.yaml), the default calibration.
+std::string WithNarrowBlock(std::string text) {
+  const auto [begin, end] = MarkedBlock(text);
+  EXPECT_NE(begin, std::string::npos);
+  if (begin == std::string::npos) return text;
+  return text.insert(end,
                      "  on_narrow_maps:\n"
                      "    max_hallway_width_in: 100\n"
                      "    error_model_file: error_model_narrow.yaml\n"
@@ -178,13 +186,9 @@ TEST(LocalizerSettingsTest, TheNarrowBlockNeedsItsWidthAndRefusesUnknownKeys) {
 
 TEST(LocalizerSettingsTest, WithoutTheBlockEveryMapGetsTheDefault) {
   std::string text = Shipped();
-  const auto at = text.find("  on_marked_maps:\n");
-  ASSERT_NE(at, std::string::npos);
-  auto end = text.find("\n  ", at + 1);
-  while (end != std::string::npos && text.compare(end, 5, "\n    ") == 0) {
-    end = text.find("\n  ", end + 1);
-  }
-  text.erase(at, end + 1 - at);
+  const auto [begin, end] = MarkedBlock(text);
+  ASSERT_NE(begin, std::string::npos);
+  text.erase(begin, end - begin);
   const LocalizerSettings s = Load(text);
   EXPECT_FALSE(s.on_marked_maps.has_value());
   const LocalizerSettings on_marked = ForMap(s, HallWithDoor("old_window"));
