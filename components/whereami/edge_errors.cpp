@@ -34,15 +34,10 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
   for (int k = 0; k < map::kDoorClassCount; ++k) add(by_class[k], o.by_class[k]);
   for (int r = 0; r < 2; ++r) {
     for (int k = 0; k < map::kDoorClassCount; ++k) add(by_row[r][k], o.by_row[r][k]);
-    walls_by_row[r].walls += o.walls_by_row[r].walls;
-    walls_by_row[r].false_doors += o.walls_by_row[r].false_doors;
-    walls_by_row[r].wall_in += o.walls_by_row[r].wall_in;
+    walls_by_row[r].Add(o.walls_by_row[r]);
   }
-  for (std::size_t b = 0; b < walls_by_length.size(); ++b) {
-    walls_by_length[b].walls += o.walls_by_length[b].walls;
-    walls_by_length[b].false_doors += o.walls_by_length[b].false_doors;
-    walls_by_length[b].wall_in += o.walls_by_length[b].wall_in;
-  }
+  for (std::size_t b = 0; b < walls_by_length.size(); ++b)
+    walls_by_length[b].Add(o.walls_by_length[b]);
   for (int t = 0; t < map::kDoorMarkCount; ++t) {
     false_mark[t] += o.false_mark[t];
     for (int r = 0; r < map::kDoorMarkCount; ++r) {

@@ -55,6 +55,11 @@ struct EdgeErrorCounts {
   struct WallTally {
     long walls = 0, false_doors = 0;
     double wall_in = 0.0;  // the walls' lengths summed
+    void Add(const WallTally& o) {
+      walls += o.walls;
+      false_doors += o.false_doors;
+      wall_in += o.wall_in;
+    }
   };
   std::array<WallTally, 2> walls_by_row{};
   // The true walls and the false doors sensed on them by the wall's length (its view edge's
