@@ -38,6 +38,8 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
   }
   for (std::size_t b = 0; b < walls_by_length.size(); ++b)
     walls_by_length[b].Add(o.walls_by_length[b]);
+  for (std::size_t k = 0; k < walls_by_false_doors.size(); ++k)
+    walls_by_false_doors[k] += o.walls_by_false_doors[k];
   for (int t = 0; t < map::kDoorMarkCount; ++t) {
     false_mark[t] += o.false_mark[t];
     for (int r = 0; r < map::kDoorMarkCount; ++r) {
@@ -314,9 +316,13 @@ std::size_t WallLengthBin(double length_in) {
 void CountWall(const map::Ring& view_ring, int edge, const std::vector<map::SensedEdge>& sensed,
                const std::vector<std::size_t>& on_it, EdgeErrorCounts* c) {
   const double length_in = view_ring.edges[edge].metric_in;
+  const bool row = map::InDoorRow(view_ring, edge);
   ++c->true_walls;
-  for (EdgeErrorCounts::WallTally* t : {&c->walls_by_row[map::InDoorRow(view_ring, edge)],
-                                        &c->walls_by_length[WallLengthBin(length_in)]}) {
+  if (!row) {
+    ++c->walls_by_false_doors[std::min<std::size_t>(on_it.size(), EdgeErrorCounts::kMostCounted)];
+  }
+  for (EdgeErrorCounts::WallTally* t :
+       {&c->walls_by_row[row], &c->walls_by_length[WallLengthBin(length_in)]}) {
     ++t->walls;
     t->wall_in += length_in;
     t->false_doors += static_cast<long>(on_it.size());

@@ -68,6 +68,10 @@ struct EdgeErrorCounts {
   // wall hides how it grows with the wall's length.
   static constexpr std::array<double, 6> kWallLengthBinsIn{0.0, 60.0, 120.0, 240.0, 480.0, 960.0};
   std::array<WallTally, kWallLengthBinsIn.size()> walls_by_length{};
+  // The walls outside rows by how many false doors each held: 0, 1, 2 and kMostCounted or
+  // more (ErrorModel::wall_false_doors_max).
+  static constexpr int kMostCounted = 4;
+  std::array<long, kMostCounted + 1> walls_by_false_doors{};
   // How the leaves' marks were read (Table 6.8): [true mark][read mark] over the sensed doors
   // on a true door, sensed with their class and mis-sized (both leaves of a split double
   // door), and the reads of false doors.

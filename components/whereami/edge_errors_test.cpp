@@ -187,6 +187,8 @@ TEST(EdgeErrorsTest, FalseDoorsPerInchAreCountedOverTheLengthOfTheWallsOutsideRo
   EXPECT_EQ(c.walls_by_length[3].walls, 1);  // 240-480 in: the 300 in wall
   EXPECT_EQ(c.walls_by_length[3].false_doors, 2);
   EXPECT_EQ(c.walls_by_length[2].false_doors, 1);  // 120-240 in: the 200 in wall
+  // The walls outside rows by their false doors: the 200 in wall held one, the 300 in two.
+  EXPECT_EQ(c.walls_by_false_doors, (std::array<long, 5>{0, 1, 1, 0, 0}));
   const recovery::ErrorModel m = c.ToModel("test");
   ASSERT_TRUE(m.wall_false_door_per_in.has_value());
   EXPECT_DOUBLE_EQ(*m.wall_false_door_per_in, 3.0 / 500.0);

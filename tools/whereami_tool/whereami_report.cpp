@@ -169,6 +169,13 @@ void PrintRowTallies(const EdgeErrorCounts& total, std::ostream& out) {
     out << fmt::format("{} {}", b == 0 ? "" : ";", range) << " "
         << per_wall(total.walls_by_length[b]);
   }
+  out << "\n  the other walls by the false doors each held:";
+  const auto& held = total.walls_by_false_doors;
+  for (std::size_t k = 0; k < held.size(); ++k) {
+    out << fmt::format("{} {}{} {} ({:.1f} %)", k == 0 ? "" : ";", k,
+                       k + 1 == held.size() ? "+" : "", held[k],
+                       100.0 * held[k] / std::max<long>(1, other.walls));
+  }
   out << "\n";
 }
 
