@@ -31,7 +31,9 @@ BayesLocalizer::BayesLocalizer(const map::MatchIndex& index, BayesModel model)
                   &h_, &ns1_, &ns2_, &nt_, &nh_}) {
     v->assign(states_, 0.0);
   }
-  for (auto* v : {&lb1_, &lb2_, &nlb1_, &nlb2_}) v->assign(states_, 0);
+  for (auto* v : {&lb1_, &lb2_, &nlb1_, &nlb2_, &fd1_, &fd2_, &nfd1_, &nfd2_}) {
+    v->assign(states_, 0);
+  }
 }
 
 void BayesLocalizer::Reset() {
@@ -258,11 +260,13 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
       if (pi1 > 0.0 && weight * pi1 >= i1_[s]) {
         c1_[s] = e.metric_in;
         lb1_[s] = 1;
+        fd1_[s] = 0;
       }
       i1_[s] += weight * pi1;
       if (pi2 > 0.0 && weight * pi2 >= i2_[s]) {
         c2_[s] = door ? e.metric_in : 0.0;
         lb2_[s] = 1;
+        fd2_[s] = 1;
       }
       i2_[s] += weight * pi2;
     }
@@ -335,6 +339,8 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   c2_.swap(nc2_);
   lb1_.swap(nlb1_);
   lb2_.swap(nlb2_);
+  fd1_.swap(nfd1_);
+  fd2_.swap(nfd2_);
   s1_.swap(ns1_);
   s2_.swap(ns2_);
   t_.swap(nt_);
@@ -406,6 +412,7 @@ void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
     if (add > ni1_[s1]) {
       nc1_[s1] = e.metric_in;
       nlb1_[s1] = 0;
+      nfd1_[s1] = 0;
     }
     ni1_[s1] += add;
   }
@@ -536,6 +543,7 @@ void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double 
       if (add > ni1_[sw]) {
         nc1_[sw] = e.metric_in - before_w;
         nlb1_[sw] = 0;
+        nfd1_[sw] = 0;
       }
       ni1_[sw] += add;
     }
@@ -559,6 +567,7 @@ void BayesLocalizer::NextFromFirstPart(int s, double p1, const map::SensedEdge& 
     nc2_[s] = c1_[s] + w;
     nc1_[s] = c1_[s];  // I1 and I2 of one wall never hold mass at the same step
     nlb2_[s] = lb1_[s];
+    nfd2_[s] = static_cast<std::uint8_t>(std::min(255, fd1_[s] + 1));
   }
 }
 
@@ -571,12 +580,13 @@ void BayesLocalizer::NextFromSecondPart(int s, double p2, const map::SensedEdge&
   const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
   const Confusion& cf = model_.confusion;
   const int wall = s / 2;
-  if (!cf.FalseDoorsChain() || index_.in_row(wall)) {
+  if (!cf.AnotherFalseDoor(fd2_[s]) || index_.in_row(wall)) {
     nn_[s] += p2 * angle * SecondPartDensity(s, e);
     return;
   }
   // The per-inch model: the rest of the wall past the false door holds no other (the wall
-  // ends here) or another (W1 of the rest, anywhere in it, as in NextWallFromEnd).
+  // ends here) or another (W1 of the rest, anywhere in it, as in NextWallFromEnd), up to
+  // the model's most false doors in one wall.
   const double rest = std::max(1.0, index_.metric(wall) - c2_[s]);
   const double pf = cf.FalseDoorIn(rest, false);
   nn_[s] += p2 * angle * (1.0 - pf) * SecondPartDensity(s, e);
@@ -585,6 +595,7 @@ void BayesLocalizer::NextFromSecondPart(int s, double p2, const map::SensedEdge&
     if (add > ni1_[s]) {
       nc1_[s] = c2_[s] + e.metric_in;
       nlb1_[s] = lb2_[s];
+      nfd1_[s] = fd2_[s];
     }
     ni1_[s] += add;
   }

@@ -179,6 +179,8 @@ class BayesLocalizer {
   std::vector<std::uint8_t> lb1_, lb2_;             // consumed length is only a lower bound
   std::vector<double> nn_, ni1_, ni2_, nc1_, nc2_;  // scratch for the next step
   std::vector<std::uint8_t> nlb1_, nlb2_;
+  // False doors the wall held before its part in I1 / I2 (Confusion::AnotherFalseDoor).
+  std::vector<std::uint8_t> fd1_, fd2_, nfd1_, nfd2_;
   std::vector<double> s1_, s2_, t_, h_, ns1_, ns2_, nt_, nh_;  // the leaf phases
   map::SensedEdge last_;  // the edge sensed last (what T and H need of it)
   RecoveryStatus status_ = RecoveryStatus::kEmpty;

@@ -280,6 +280,29 @@ TEST(BayesLocalizerFalseDoorTest, ARatePerInchExplainsTwoFalseDoorsInALongWall) 
   EXPECT_GT(after, before + 0.2) << "before " << before << ", after " << after;
 }
 
+// The most false doors one wall holds: with one, the second false door in the long wall is
+// an outlier again, as with the rate per wall; with two, the rest of the wall holds it.
+TEST(BayesLocalizerFalseDoorTest, AWallHoldsNoMoreFalseDoorsThanTheModelsMost) {
+  const map::Map map = CorridorWithALongWall();
+  const map::MatchIndex index(map);
+  ErrorModel per_inch = ErrorModel::Paper();
+  per_inch.wall_false_door_per_in = 0.0015;
+  ErrorModel one = per_inch, two = per_inch;
+  one.wall_false_doors_max = 1;
+  two.wall_false_doors_max = 2;
+  const Confusion cf = Resolve(one, index);
+  EXPECT_TRUE(cf.AnotherFalseDoor(0));
+  EXPECT_FALSE(cf.AnotherFalseDoor(1));
+  EXPECT_TRUE(Resolve(per_inch, index).AnotherFalseDoor(7));
+
+  const double any = TruthAfterTwoFalseDoors(index, per_inch);
+  const double at_most_one = TruthAfterTwoFalseDoors(index, one);
+  const double at_most_two = TruthAfterTwoFalseDoors(index, two);
+  EXPECT_LT(at_most_one, 0.5) << "a second false door in one wall was explained";
+  EXPECT_GT(at_most_two, 0.9);
+  EXPECT_NEAR(at_most_two, any, 0.05);
+}
+
 TEST(BayesLocalizerFalseDoorTest, ARatePerInchKeepsThePosteriorNormalised) {
   const map::Map map = CorridorWithALongWall();
   const map::MatchIndex index(map);

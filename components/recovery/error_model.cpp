@@ -124,6 +124,13 @@ void ErrorModel::Validate() const {
     throw std::invalid_argument("wall_false_door_per_in is " + Num(*wall_false_door_per_in) +
                                 ", not in [0, 0.1]");
   }
+  if (wall_false_doors_max && !wall_false_door_per_in) {
+    throw std::invalid_argument("wall_false_doors_max needs wall_false_door_per_in");
+  }
+  if (wall_false_doors_max && !(*wall_false_doors_max >= 1 && *wall_false_doors_max <= 9)) {
+    throw std::invalid_argument("wall_false_doors_max is " + std::to_string(*wall_false_doors_max) +
+                                ", not in [1, 9]");
+  }
   ValidateClassRates(by_class, "by_class.");
   if (in_row) {
     if (in_row->wall_false_door)
@@ -248,6 +255,13 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
   if (node.Has("wall_false_door_per_in")) {
     m.wall_false_door_per_in = node.Get<double>("wall_false_door_per_in", 0.0, 0.1, "1/in");
   }
+  if (node.Has("wall_false_doors_max")) {
+    m.wall_false_doors_max = node.Get<int>("wall_false_doors_max", 1, 9);
+    if (!m.wall_false_door_per_in) {
+      node.Fail("wall_false_doors_max",
+                "needs wall_false_door_per_in (without it a wall holds one false door at most)");
+    }
+  }
   const double sum = m.door_correct + m.door_missized + m.door_missed;
   if (std::abs(sum - 1.0) > kSumTolerance) {
     node.Fail("door_missed", "door_correct + door_missized + door_missed = " + Num(sum) +
@@ -351,6 +365,7 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   c.false_door = model.wall_false_door;
   c.row_false_door = c.false_door;
   c.false_door_per_in = model.wall_false_door_per_in.value_or(0.0);
+  c.false_doors_max = model.wall_false_doors_max.value_or(0);
   if (model.in_row && model.in_row->wall_false_door) {
     c.row_false_door = *model.in_row->wall_false_door;
     c.row_false_door_own = true;
@@ -632,6 +647,9 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
   out += "  wall_false_door: " + number(m.wall_false_door) + "\n";
   if (m.wall_false_door_per_in) {
     out += "  wall_false_door_per_in: " + number(*m.wall_false_door_per_in) + "\n";
+  }
+  if (m.wall_false_doors_max) {
+    out += "  wall_false_doors_max: " + std::to_string(*m.wall_false_doors_max) + "\n";
   }
   std::string missized = "{";
   for (const auto& [c, row] : m.missized_to) {

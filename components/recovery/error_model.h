@@ -48,6 +48,10 @@ struct ErrorModel {
   // science hall, 16 % of the walls of 60-120 in and 123 % of those of 480-960 in
   // (docs/whereami.md). The study's sampler keeps wall_false_door.
   std::optional<double> wall_false_door_per_in;
+  // With wall_false_door_per_in, the most false doors one wall holds (a false door past
+  // that many is left to the outlier). Without it a wall holds any number: each rest of a
+  // wall past a false door may hold another.
+  std::optional<int> wall_false_doors_max;
   // Per true class, its own door rates where they differ from the ones above (a double door
   // is read as one leaf far more often than a single door is mis-sized). Each sums to 1.
   struct DoorRates {
@@ -139,6 +143,12 @@ struct Confusion {
   double FalseDoorIn(double len_in, bool row) const;
   // Whether the rest of a wall past a false door may hold another (the per-inch model).
   bool FalseDoorsChain() const { return false_door_per_in > 0.0; }
+  // ErrorModel::wall_false_doors_max, 0 for any number.
+  int false_doors_max = 0;
+  // Whether the rest of a wall past `held` false doors may hold another.
+  bool AnotherFalseDoor(int held) const {
+    return FalseDoorsChain() && (false_doors_max <= 0 || held < false_doors_max);
+  }
   ClassMatrix missized_to{};  // [true][sensed], each row sums to 1
   ClassVector false_class{};  // sums to 1
   ClassVector map_prior{};    // the map's door-class frequencies (sum 1, or all 0)

@@ -184,6 +184,36 @@ TEST(ErrorModelFile, ReadsAFalseDoorRatePerInchAndWritesItBack) {
   }
 }
 
+TEST(ErrorModelFile, ReadsTheMostFalseDoorsOfAWallAndWritesItBack) {
+  const ErrorModel m = ParseErrorModel(
+      Model("  wall_false_door_per_in: 0.002\n  wall_false_doors_max: 2\n"), "m.yaml");
+  ASSERT_TRUE(m.wall_false_doors_max.has_value());
+  EXPECT_EQ(*m.wall_false_doors_max, 2);
+  const Confusion c = Resolve(m, map::MatchIndex(testing::CorridorMap()));
+  EXPECT_TRUE(c.AnotherFalseDoor(1));
+  EXPECT_FALSE(c.AnotherFalseDoor(2));
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  EXPECT_EQ(back.wall_false_doors_max, m.wall_false_doors_max);
+  // Without it, any number.
+  const ErrorModel any = ParseErrorModel(Model("  wall_false_door_per_in: 0.002\n"), "a.yaml");
+  EXPECT_FALSE(any.wall_false_doors_max.has_value());
+  EXPECT_EQ(FormatErrorModelYaml(any, "x").find("doors_max"), std::string::npos);
+  try {
+    ParseErrorModel(Model("  wall_false_door_per_in: 0.002\n  wall_false_doors_max: 0\n"),
+                    "bad.yaml");
+    FAIL() << "accepted a wall that holds no false door";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 8);
+    EXPECT_NE(e.key().find("wall_false_doors_max"), std::string::npos) << e.key();
+  }
+  try {
+    ParseErrorModel(Model("  wall_false_doors_max: 2\n"), "bad.yaml");
+    FAIL() << "accepted a most without a rate per inch";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.reason().find("wall_false_door_per_in"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ErrorModelFile, BadRatesOfDoorsInARowAreRejectedWithTheirKey) {
   try {
     ParseErrorModel(Model("  in_row:\n    by_class:\n"
