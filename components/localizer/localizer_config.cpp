@@ -54,6 +54,8 @@ const char* ObservationForName(ObservationFor o) {
       return "the map's doors carry surveyed marks";
     case ObservationFor::kNarrowMap:
       return "the map's hallways are narrow";
+    case ObservationFor::kOwnMap:
+      return "the map's own, measured on it";
     case ObservationFor::kDefault:
       break;
   }
@@ -70,7 +72,11 @@ double MapHallwayWidthIn(const map::Map& m, double otherwise) {
 
 LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m) {
   settings.observation_for = ObservationFor::kDefault;
-  if (settings.on_marked_maps && HasSurveyedMarks(m)) {
+  const auto own = settings.on_maps.find(m.info().name);
+  if (own != settings.on_maps.end()) {
+    settings.observation = own->second;
+    settings.observation_for = ObservationFor::kOwnMap;
+  } else if (settings.on_marked_maps && HasSurveyedMarks(m)) {
     settings.observation = *settings.on_marked_maps;
     settings.observation_for = ObservationFor::kMarkedMap;
   } else if (settings.on_narrow_maps && MapHallwayWidthIn(m, settings.view.hallway_width_in) <=
@@ -80,6 +86,7 @@ LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m) {
   }
   settings.on_marked_maps.reset();
   settings.on_narrow_maps.reset();
+  settings.on_maps.clear();
   return settings;
 }
 
@@ -129,6 +136,15 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
     n.observation = LoadObservation(narrow, s.bayes_keep_threshold);
     narrow.Finish();
     s.on_narrow_maps = n;
+  }
+  if (c.Has("on_maps")) {
+    const StrictYaml maps = c.Child("on_maps");
+    for (const std::string& name : maps.Keys()) {
+      const StrictYaml own = maps.Child(name);
+      s.on_maps[name] = LoadObservation(own, s.bayes_keep_threshold);
+      own.Finish();
+    }
+    maps.Finish();
   }
   c.Finish();
   return s;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -42,7 +43,7 @@ struct NarrowMapSettings {
 };
 
 // Which of the configured observation models ForMap chose.
-enum class ObservationFor : std::uint8_t { kDefault, kMarkedMap, kNarrowMap };
+enum class ObservationFor : std::uint8_t { kDefault, kMarkedMap, kNarrowMap, kOwnMap };
 const char* ObservationForName(ObservationFor o);
 
 // The localizer process's settings (configs/localizer.yaml). The Bayes matcher's
@@ -52,11 +53,12 @@ struct LocalizerSettings {
   LocalizerConfig localizer;   // everything but the Bayes model
   map::HallwayViewConfig view;
   // The observation model for a map whose doors carry no surveyed marks, the one for a map
-  // whose doors do (Table 6.8) and the one for a map of narrow hallways, where they differ:
-  // ForMap picks one.
+  // whose doors do (Table 6.8), the one for a map of narrow hallways and a floor's own (its
+  // calibration measured on runs of that floor), where they differ: ForMap picks one.
   ObservationSettings observation;
   std::optional<ObservationSettings> on_marked_maps;
   std::optional<NarrowMapSettings> on_narrow_maps;
+  std::map<std::string, ObservationSettings> on_maps;  // by the map's name (MapInfo::name)
   // Set by ForMap: which model `observation` is.
   ObservationFor observation_for = ObservationFor::kDefault;
   std::string study_file;
@@ -82,14 +84,16 @@ bool HasSurveyedMarks(const map::Map& m);
 // `width_in`); `otherwise` when none does (the view's default hallway width).
 double MapHallwayWidthIn(const map::Map& m, double otherwise);
 
-// `settings` with the observation model for `m`: on_marked_maps where it is set and `m` has
-// surveyed marks; else on_narrow_maps where it is set and `m`'s widest hallway is within its
+// `settings` with the observation model for `m`: the on_maps entry named as `m` is, where
+// there is one; else on_marked_maps where it is set and `m` has surveyed marks; else
+// on_narrow_maps where it is set and `m`'s widest hallway is within its
 // max_hallway_width_in; else the default one. observation_for says which.
 LocalizerSettings ForMap(LocalizerSettings settings, const map::Map& m);
 
-// Reads the `localizer` section; every key required but the `on_marked_maps` and
-// `on_narrow_maps` blocks (the latter's `max_hallway_width_in` with the others), unknown keys
-// rejected (InputError with file, line and key).
+// Reads the `localizer` section; every key required but the `on_marked_maps`,
+// `on_narrow_maps` (its `max_hallway_width_in` with the others) and `on_maps` blocks (a block
+// of the same keys under each map name), unknown keys rejected (InputError with file, line
+// and key).
 LocalizerSettings LoadLocalizerSettings(const StrictYaml& section);
 
 // The localizer's configuration for matching against `matched` (the hallway view of the

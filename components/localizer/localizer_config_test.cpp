@@ -1,5 +1,5 @@
 // The localizer's settings: which observation model a map gets (ForMap), and the
-// `on_marked_maps` and `on_narrow_maps` blocks' keys.
+// `on_marked_maps`, `on_narrow_maps` and `on_maps` blocks' keys.
 #include "localizer/localizer_config.h"
 
 #include <gmock/gmock.h>
@@ -57,6 +57,31 @@ std::string WithNarrowBlock(std::string text) {
                      "    bayes_lost_threshold: 0.001\n"
                      "    bayes_false_door_fit: false\n"
                      "    bayes_max_missed_doors: 2\n");
+}
+
+// The shipped text with an on_maps block after the on_marked_maps block, holding for the map
+// `name` the default model with the calibration `slope`, offset -1.5 (`extra`: one more
+// line in that map's block).
+std::string WithOwnMapBlock(std::string text, const std::string& name, const std::string& slope,
+                            const std::string& extra = "") {
+  const auto [begin, end] = MarkedBlock(text);
+  EXPECT_NE(begin, std::string::npos);
+  if (begin == std::string::npos) return text;
+  return text.insert(end,
+                     "  on_maps:\n"
+                     "    " +
+                         name +
+                         ":\n"
+                         "      error_model_file: error_model_live.yaml\n"
+                         "      confidence_calibration_slope: " +
+                         slope +
+                         "\n"
+                         "      confidence_calibration_offset: -1.5\n"
+                         "      localized_confidence: 0.955\n"
+                         "      bayes_lost_threshold: 0.001\n"
+                         "      bayes_false_door_fit: false\n"
+                         "      bayes_max_missed_doors: 2\n" +
+                         extra);
 }
 
 map::Map HallWithDoor(const std::string& pattern, std::optional<double> width_in = std::nullopt) {
@@ -222,6 +247,51 @@ TEST(LocalizerSettingsTest, AMarkedBarTheFilterCannotReachIsRefusedWithItsKey) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("on_marked_maps"));
     EXPECT_THAT(e.what(), HasSubstr("localized_confidence"));
+  }
+}
+
+TEST(LocalizerSettingsTest, AFloorNamedInOnMapsGetsItsOwnCalibrationBeforeAnyOtherModel) {
+  // HallWithDoor's map is named "hall".
+  const LocalizerSettings s = Load(WithNarrowBlock(WithOwnMapBlock(Shipped(), "hall", "0.5")));
+  ASSERT_EQ(s.on_maps.count("hall"), 1U);
+  const ObservationSettings& own = s.on_maps.at("hall");
+  EXPECT_EQ(own.calibration.slope, 0.5);
+  EXPECT_EQ(own.calibration.offset, -1.5);
+  // The bar is the same stated risk; under the floor's calibration it needs another
+  // posterior than the default's.
+  EXPECT_NE(own.bayes_threshold, s.observation.bayes_threshold);
+  EXPECT_NEAR(own.calibration.Calibrated(own.bayes_threshold), 0.955, 1e-9);
+
+  // Named, the floor gets its own whether its doors are marked or its hallways narrow.
+  for (const map::Map& m : {HallWithDoor(""), HallWithDoor("old_window"),
+                            HallWithDoor("", s.on_narrow_maps->max_hallway_width_in)}) {
+    const LocalizerSettings on = ForMap(s, m);
+    EXPECT_EQ(on.observation_for, ObservationFor::kOwnMap);
+    EXPECT_EQ(on.observation.calibration.slope, own.calibration.slope);
+    EXPECT_EQ(on.observation.bayes_threshold, own.bayes_threshold);
+    EXPECT_TRUE(on.on_maps.empty());
+  }
+  EXPECT_STREQ(ObservationForName(ObservationFor::kOwnMap), "the map's own, measured on it");
+
+  // Another floor's block leaves this one to the rules before.
+  const LocalizerSettings other = Load(WithOwnMapBlock(Shipped(), "another_floor", "0.5"));
+  EXPECT_EQ(ForMap(other, HallWithDoor("")).observation_for, ObservationFor::kDefault);
+  EXPECT_EQ(ForMap(other, HallWithDoor("old_window")).observation_for, ObservationFor::kMarkedMap);
+}
+
+TEST(LocalizerSettingsTest, AFloorsBlockRefusesAnUnknownKeyAndABadCalibrationWithItsPath) {
+  for (const auto& [text, named] :
+       {std::pair{WithOwnMapBlock(Shipped(), "hall", "0.5", "      bayes_outlier: 0.01\n"),
+                  "bayes_outlier"},
+        std::pair{WithOwnMapBlock(Shipped(), "hall", "-1"), "confidence_calibration_slope"}}) {
+    try {
+      Load(text);
+      FAIL() << "accepted the floor's block with a bad " << named;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
+      EXPECT_THAT(e.what(), HasSubstr("on_maps.hall"));
+      EXPECT_THAT(e.what(), HasSubstr(named));
+    }
   }
 }
 

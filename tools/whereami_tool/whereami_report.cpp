@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -13,10 +14,10 @@
 #include "common/quantile.h"
 #include "common/worker_pool.h"
 #include "localizer/localizer_config.h"
+#include "plot/map_render.h"
+#include "stickrep/hallway_view.h"
 #include "study_tool/study_report.h"
 #include "whereami_tool/integrity_report.h"
-#include "stickrep/hallway_view.h"
-#include "plot/map_render.h"
 
 namespace stickrep::whereami {
 
@@ -294,24 +295,35 @@ RunSetup LoadCheckedSetup(const ToolOptions& options) {
       throw InputError(setup.map_file, 0, "--ring", "no ring '" + ring + "' in the map");
     }
   }
-  // Each run reads the observation model's files; a bad one is this tool's input error,
-  // not a failed run.
-  localizer::MakeLocalizerConfig(setup.localizer,
+  // Each run reads the files of the observation model the map gets; a bad one is this tool's
+  // input error, not a failed run.
+  localizer::MakeLocalizerConfig(localizer::ForMap(setup.localizer, *setup.map),
                                  map::HallwayView(*setup.map, setup.localizer.view).view());
   return setup;
+}
+
+// The observation model `chosen` (ForMap's) names, as the header prints it.
+std::string ObservationModelText(const localizer::LocalizerSettings& chosen) {
+  return fmt::format(" ({}: {}, declared at confidence {:g}, the posterior {:.7g})",
+                     localizer::ObservationForName(chosen.observation_for),
+                     std::filesystem::path(chosen.observation.error_model_file).filename().string(),
+                     chosen.observation.localized_confidence, chosen.observation.bayes_threshold);
 }
 
 void PrintRunsHeader(const RunSetup& setup, const ToolOptions& options, std::ostream& out) {
   out << fmt::format(
       "Where-am-I runs of the components in one process: map '{}' ({}), seeds {}..{}, {:.0f} in "
       "hallway, "
-      "start up to {:g} in off the axis and {:g} deg turned; matcher {}{}\n",
+      "start up to {:g} in off the axis and {:g} deg turned; matcher {}{}{}\n",
       setup.map->info().name, setup.map_file, options.first_seed,
       options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
       setup.virtual_robot.world.hallway_width_in, setup.virtual_robot.start_lateral_offset_max_in,
       setup.virtual_robot.start_heading_error_max_deg,
       setup.localizer.localizer.method == localizer::MatchMethod::kBayes ? "bayes"
                                                                          : "deterministic",
+      setup.localizer.localizer.method == localizer::MatchMethod::kBayes
+          ? ObservationModelText(localizer::ForMap(setup.localizer, *setup.map))
+          : std::string(),
       options.kidnap_after_s < 0.0 ? std::string()
       : options.kidnap_jump_random
           ? fmt::format(", kidnapped {:g} s after the pose by a jump drawn from each seed over "

@@ -1,9 +1,11 @@
 // The stickrep-whereami batch: seeds over worker threads, starts drawn again, runs that
-// cannot be run, and the tool's bad input.
+// cannot be run, the observation model the map gets, and the tool's bad input.
 #include "whereami_tool/whereami_report.h"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -64,6 +66,52 @@ TEST(WhereAmIToolTest, UnknownRingIsBadInput) {
   std::ostringstream out, err;
   EXPECT_EQ(RunTool(o, out, err), kExitBadInput);
   EXPECT_NE(err.str().find("no ring 'no_such_ring'"), std::string::npos) << err.str();
+}
+
+// A copy of configs/ whose localizer.yaml gives the small map ("wing1_corridor") a model of
+// its own naming `error_model_file`.
+std::string ConfigsWithOwnModel(const std::string& error_model_file) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) /
+                       ("whereami_own_model_" + fs::path(error_model_file).stem().string());
+  fs::remove_all(dir);
+  fs::copy(fs::path(STICKREP_SOURCE_DIR) / "configs", dir, fs::copy_options::recursive);
+  std::ofstream(dir / "localizer.yaml", std::ios::app)
+      << "  on_maps:\n"
+         "    wing1_corridor:\n"
+         "      error_model_file: "
+      << error_model_file
+      << "\n"
+         "      confidence_calibration_slope: 0.5\n"
+         "      confidence_calibration_offset: -1.0\n"
+         "      localized_confidence: 0.955\n"
+         "      bayes_lost_threshold: 0.001\n"
+         "      bayes_false_door_fit: false\n"
+         "      bayes_max_missed_doors: 2\n";
+  return dir.string();
+}
+
+TEST(WhereAmIToolTest, TheMapsOwnModelIsNamedAndItsFilesCheckedBeforeAnyRun) {
+  ToolOptions o;
+  o.map_file = kSmallMap;
+  o.runs = 1;
+  o.threads = 1;
+  o.max_sim_s = 1.0;
+  o.config_dir = ConfigsWithOwnModel("error_model_live.yaml");
+  std::ostringstream out, err;
+  ASSERT_EQ(RunTool(o, out, err), 0) << err.str();
+  const std::string header = out.str().substr(0, out.str().find('\n'));
+  EXPECT_NE(header.find("the map's own, measured on it: error_model_live.yaml, declared at "
+                        "confidence 0.955"),
+            std::string::npos)
+      << header;
+
+  // A file the floor's block names that is not there is bad input, before any run.
+  o.config_dir = ConfigsWithOwnModel("no_such_model.yaml");
+  std::ostringstream out2, err2;
+  EXPECT_EQ(RunTool(o, out2, err2), kExitBadInput);
+  EXPECT_NE(err2.str().find("no_such_model.yaml"), std::string::npos) << err2.str();
+  EXPECT_EQ(out2.str().find("seed"), std::string::npos) << out2.str();
 }
 
 }  // namespace
