@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "common/input_error.h"
 #include "localizer/localizer_config.h"
@@ -61,7 +62,10 @@ std::string WithValue(std::string text, const std::string& key, const std::strin
 TEST(ConfidenceCalibrationTest, TheShippedThresholdIsACalibratedConfidence) {
   const LocalizerSettings shipped = Load(Shipped());
   ASSERT_TRUE(shipped.on_marked_maps.has_value());
-  for (const ObservationSettings& s : {shipped.observation, *shipped.on_marked_maps}) {
+  std::vector<ObservationSettings> models = {shipped.observation, *shipped.on_marked_maps};
+  for (const auto& [name, own] : shipped.on_maps) models.push_back(own);
+  EXPECT_GE(models.size(), 3U);  // the science hall's own
+  for (const ObservationSettings& s : models) {
     EXPECT_GT(s.calibration.slope, 0.0);
     // The filter's own threshold is the posterior whose calibrated confidence is the one
     // declared: never below it for an over-confident filter.

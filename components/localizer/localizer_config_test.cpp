@@ -59,29 +59,26 @@ std::string WithNarrowBlock(std::string text) {
                      "    bayes_max_missed_doors: 2\n");
 }
 
-// The shipped text with an on_maps block after the on_marked_maps block, holding for the map
-// `name` the default model with the calibration `slope`, offset -1.5 (`extra`: one more
-// line in that map's block).
+// The shipped text with a block for the map `name` in its on_maps block (after the
+// on_marked_maps block when there is none): the default model with the calibration `slope`,
+// offset -1.5 (`extra`: one more line in that map's block).
 std::string WithOwnMapBlock(std::string text, const std::string& name, const std::string& slope,
                             const std::string& extra = "") {
-  const auto [begin, end] = MarkedBlock(text);
-  EXPECT_NE(begin, std::string::npos);
-  if (begin == std::string::npos) return text;
-  return text.insert(end,
-                     "  on_maps:\n"
-                     "    " +
-                         name +
-                         ":\n"
-                         "      error_model_file: error_model_live.yaml\n"
-                         "      confidence_calibration_slope: " +
-                         slope +
-                         "\n"
-                         "      confidence_calibration_offset: -1.5\n"
-                         "      localized_confidence: 0.955\n"
-                         "      bayes_lost_threshold: 0.001\n"
-                         "      bayes_false_door_fit: false\n"
-                         "      bayes_max_missed_doors: 2\n" +
-                         extra);
+  const std::string maps = "  on_maps:\n";
+  std::size_t at = text.find(maps);
+  if (at == std::string::npos) {
+    at = MarkedBlock(text).second;
+    EXPECT_NE(at, std::string::npos);
+    if (at == std::string::npos) return text;
+    text.insert(at, maps);
+  }
+  const std::string block =
+      "    " + name + ":\n      error_model_file: error_model_live.yaml\n" +
+      "      confidence_calibration_slope: " + slope + "\n" +
+      "      confidence_calibration_offset: -1.5\n" + "      localized_confidence: 0.955\n" +
+      "      bayes_lost_threshold: 0.001\n" + "      bayes_false_door_fit: false\n" +
+      "      bayes_max_missed_doors: 2\n" + extra;
+  return text.insert(at + maps.size(), block);
 }
 
 map::Map HallWithDoor(const std::string& pattern, std::optional<double> width_in = std::nullopt) {
@@ -146,18 +143,23 @@ TEST(LocalizerSettingsTest, TheShippedFloorsGetTheModelTheirSurveySupports) {
   EXPECT_EQ(MapHallwayWidthIn(teaching, 120.0), 96.0);
   EXPECT_EQ(MapHallwayWidthIn(science, 120.0), 88.0);
 
-  // As shipped, no model for narrow hallways: the floors without marks get the default.
+  // As shipped, no model for narrow hallways: the teaching building gets the default, and
+  // the science hall its own calibration of the default model, at the same stated risk.
   const LocalizerSettings shipped = Load(Shipped());
   EXPECT_FALSE(shipped.on_narrow_maps.has_value());
   EXPECT_EQ(ForMap(shipped, engineering).observation_for, ObservationFor::kMarkedMap);
   EXPECT_EQ(ForMap(shipped, teaching).observation_for, ObservationFor::kDefault);
-  EXPECT_EQ(ForMap(shipped, science).observation_for, ObservationFor::kDefault);
-  // With one, both narrow floors get it; the marked floor keeps its own, and a floor of the
-  // text's 120 in hallways the default.
+  const LocalizerSettings on_science = ForMap(shipped, science);
+  EXPECT_EQ(on_science.observation_for, ObservationFor::kOwnMap);
+  EXPECT_EQ(on_science.observation.error_model_file, shipped.observation.error_model_file);
+  EXPECT_EQ(on_science.observation.localized_confidence, shipped.observation.localized_confidence);
+  EXPECT_GT(on_science.observation.bayes_threshold, shipped.observation.bayes_threshold);
+  // With one, the teaching building gets it; the science hall and the marked floor keep
+  // their own, and a floor of the text's 120 in hallways the default.
   const LocalizerSettings narrow = Load(WithNarrowBlock(Shipped()));
   EXPECT_EQ(ForMap(narrow, engineering).observation_for, ObservationFor::kMarkedMap);
   EXPECT_EQ(ForMap(narrow, teaching).observation_for, ObservationFor::kNarrowMap);
-  EXPECT_EQ(ForMap(narrow, science).observation_for, ObservationFor::kNarrowMap);
+  EXPECT_EQ(ForMap(narrow, science).observation_for, ObservationFor::kOwnMap);
   EXPECT_EQ(ForMap(narrow, map::LoadMap(maps + "storefront.yaml")).observation_for,
             ObservationFor::kDefault);
 }

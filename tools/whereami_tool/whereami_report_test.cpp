@@ -69,25 +69,31 @@ TEST(WhereAmIToolTest, UnknownRingIsBadInput) {
 }
 
 // A copy of configs/ whose localizer.yaml gives the small map ("wing1_corridor") a model of
-// its own naming `error_model_file`.
+// its own naming `error_model_file`, in its on_maps block (one at the end if it has none).
 std::string ConfigsWithOwnModel(const std::string& error_model_file) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(::testing::TempDir()) /
                        ("whereami_own_model_" + fs::path(error_model_file).stem().string());
   fs::remove_all(dir);
   fs::copy(fs::path(STICKREP_SOURCE_DIR) / "configs", dir, fs::copy_options::recursive);
-  std::ofstream(dir / "localizer.yaml", std::ios::app)
-      << "  on_maps:\n"
-         "    wing1_corridor:\n"
-         "      error_model_file: "
-      << error_model_file
-      << "\n"
-         "      confidence_calibration_slope: 0.5\n"
-         "      confidence_calibration_offset: -1.0\n"
-         "      localized_confidence: 0.955\n"
-         "      bayes_lost_threshold: 0.001\n"
-         "      bayes_false_door_fit: false\n"
-         "      bayes_max_missed_doors: 2\n";
+  std::stringstream text;
+  text << std::ifstream(dir / "localizer.yaml").rdbuf();
+  std::string yaml = text.str();
+  const std::string maps = "  on_maps:\n";
+  std::size_t at = yaml.find(maps);
+  if (at == std::string::npos) {
+    at = yaml.size();
+    yaml += maps;
+  }
+  yaml.insert(at + maps.size(), "    wing1_corridor:\n      error_model_file: " + error_model_file +
+                                    "\n" +
+                                    "      confidence_calibration_slope: 0.5\n"
+                                    "      confidence_calibration_offset: -1.0\n"
+                                    "      localized_confidence: 0.955\n"
+                                    "      bayes_lost_threshold: 0.001\n"
+                                    "      bayes_false_door_fit: false\n"
+                                    "      bayes_max_missed_doors: 2\n");
+  std::ofstream(dir / "localizer.yaml") << yaml;
   return dir.string();
 }
 
