@@ -65,6 +65,7 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
       // end no longer throws the edges sensed so far away).
       bayes_->Reverse(assembler_.reversal_travel_in());
       assembler_.Restart();
+      loss_pending_ = false;  // the pose given up was the other way: RECOVERING it stays
       Rebuild(odometer_in, "travel reversed: the evidence is kept, travelling the other way");
       return true;
     }
@@ -102,6 +103,7 @@ void Localizer::StartTracking(double odometer_in) {
 }
 
 void Localizer::ResetRecovery() {
+  loss_pending_ = false;
   matcher_.Reset();
   if (bayes_) {
     bayes_->Reset();
@@ -162,16 +164,52 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
     PublishTracked(best.probability, "the sensed edges place the robot elsewhere: " +
                                          tracker_.message());
   } else {
-    const bool lost = tracked < config_.lost_threshold;
+    // Against the pose: LOST at once, or once the next edges are against it too (a run of
+    // misreads the model rates apart can sink a right pose for an edge; a kidnap keeps it
+    // sunk).
+    const bool against = tracked < config_.lost_threshold;
+    const bool lost = against && config_.lost_confirm_edges == 0;
     const TrackedPose p = tracker_.pose();
     given_up_ = GivenUp{p.ring, p.edge, p.dir, tracked, lost,
                         (given_up_ ? given_up_->serial : 0) + 1};
-    LeaveLocalized(odometer_in, lost ? Status::kLost : Status::kRecovering,
-                   fmt::format("the sensed edges {} the pose (belief {:.3f}): recovering from the "
-                               "filter's belief",
-                               lost ? "are against" : "no longer confirm", tracked));
+    LeaveLocalized(
+        odometer_in, lost ? Status::kLost : Status::kRecovering,
+        fmt::format("the sensed edges {} the pose (belief {:.3f}): recovering from the "
+                    "filter's belief{}",
+                    against ? "are against" : "no longer confirm", tracked,
+                    against && !lost ? "; LOST if the next edges are against it too" : ""));
+    loss_pending_ = against && !lost;
   }
   return true;
+}
+
+void Localizer::ConfirmLoss() {
+  if (!loss_pending_ || !given_up_) return;
+  if (estimate_.status == Status::kLocalized) {
+    loss_pending_ = false;  // a place is held again: what became of the old one is moot
+    return;
+  }
+  // Since the pose was given up, recovery_edges_ edges were sensed: the robot, had it been
+  // there, is up to that many edges on (fewer where the filter takes some for false doors).
+  const double belief =
+      BeliefNear(given_up_->ring, given_up_->edge, given_up_->dir, recovery_edges_);
+  if (belief >= config_.lost_threshold) {
+    loss_pending_ = false;
+    estimate_.message += fmt::format(
+        "; the pose given up is not against the evidence now "
+        "(belief {:.4f}): no LOST",
+        belief);
+    return;
+  }
+  if (recovery_edges_ < config_.lost_confirm_edges) return;
+  loss_pending_ = false;
+  losses_++;
+  given_up_->lost = true;
+  estimate_.status = Status::kLost;
+  estimate_.message += fmt::format(
+      "; the pose given up is still against the evidence {} edges "
+      "on (belief {:.2g}): LOST",
+      recovery_edges_, belief);
 }
 
 // The pose is given up but the filter's belief kept: the recovery goes on from it.
@@ -219,16 +257,21 @@ bool Localizer::NearTrackedPose(const recovery::PoseBelief& b) const {
 
 double Localizer::BeliefInTrackedPose() const {
   const TrackedPose p = tracker_.pose();
-  const int ring_size = index_.RingSize(p.ring);
+  return BeliefNear(p.ring, p.edge, p.dir);
+}
+
+double Localizer::BeliefNear(int ring, int edge, int dir, int ahead) const {
+  const int ring_size = index_.RingSize(ring);
   double belief = 0.0;
   // Filter state (g, dir): g sensed last, the robot in the edge after it (k = 1). A
   // neighbour counts too (k = 0, 2; k = -1: the tracker is an edge behind): the pose may be
-  // anchored on an edge whose end the filter has not been given yet.
-  for (int k = -1; k <= 2; ++k) {
-    int e = p.edge - p.dir * k;
-    if (index_.RingClosed(p.ring)) e = (e % ring_size + ring_size) % ring_size;
+  // anchored on an edge whose end the filter has not been given yet. `ahead` edges further
+  // on count as well.
+  for (int k = -1 - std::max(0, ahead); k <= 2; ++k) {
+    int e = edge - dir * k;
+    if (index_.RingClosed(ring)) e = (e % ring_size + ring_size) % ring_size;
     if (e < 0 || e >= ring_size) continue;
-    belief += bayes_->PoseProbability(index_.RingOffset(p.ring) + e, p.dir);
+    belief += bayes_->PoseProbability(index_.RingOffset(ring) + e, dir);
   }
   return belief;
 }
@@ -262,6 +305,7 @@ bool Localizer::Recover(double odometer_in, const std::vector<map::SensedEdge>& 
     Rebuild(odometer_in, bayes_->status() == recovery::RecoveryStatus::kLocalized
                              ? fmt::format("best place has posterior {:.4f}: pose recovered", p)
                              : fmt::format("best place has posterior {:.4f}", p));
+    ConfirmLoss();
     return true;
   }
   if (!ExtendDeterministic(edges)) return true;

@@ -71,6 +71,9 @@ struct LocalizerConfig {
   // there.
   double keep_threshold = 0.9;
   double lost_threshold = 0.05;
+  // Further sensed edges after which the belief in a pose given up must still be under
+  // lost_threshold before LOST is said (RECOVERING meanwhile); 0: LOST at once.
+  int lost_confirm_edges = 0;
   // Bayes: the published confidence from the filter's posterior (identity by default).
   ConfidenceCalibration calibration;
 };
@@ -98,7 +101,8 @@ class Localizer {
   std::uint64_t losses() const { return losses_; }
   std::uint64_t edges_total() const { return edges_total_; }
   // The last LOCALIZED pose given up: where, the filter's belief in it then, and whether it
-  // was declared LOST (belief under lost_threshold) rather than RECOVERING.
+  // was declared LOST (belief under lost_threshold, and still under it lost_confirm_edges
+  // edges on) rather than RECOVERING.
   struct GivenUp {
     int ring = 0;
     int edge = 0;
@@ -138,6 +142,12 @@ class Localizer {
   bool NearTrackedPose(const recovery::PoseBelief& b) const;
   // The share of the Bayes filter's belief that agrees with the tracked pose.
   double BeliefInTrackedPose() const;
+  // The share of the filter's belief at the robot in ring-local edge `edge` of `ring`,
+  // travelling `dir`, a neighbour, or up to `ahead` edges further on.
+  double BeliefNear(int ring, int edge, int dir, int ahead = 0) const;
+  // A pose given up with the evidence against it: LOST once `lost_confirm_edges` further
+  // edges keep the belief in it (moved on by the edges sensed) under lost_threshold.
+  void ConfirmLoss();
   // The pose is given up: LOST, and a new recovery starts from nothing.
   void Lose(const std::string& why);
   void LeaveLocalized(double odometer_in, Status status, const std::string& why);
@@ -158,6 +168,7 @@ class Localizer {
   double kidnap_per_edge_ = 0.0;  // the filter's kidnap share while a pose is held
   bool was_localized_ = false;
   std::optional<GivenUp> given_up_;
+  bool loss_pending_ = false;  // given_up_ is against the evidence, LOST not yet said
 };
 
 }  // namespace stickrep::localizer

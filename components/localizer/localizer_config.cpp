@@ -123,6 +123,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.bayes_confirm_silent_in = c.Get<double>("bayes_confirm_silent_in", 0.0, 600.0, "in");
   s.bayes_keep_threshold = c.Get<double>("bayes_keep_threshold", 0.0, 0.999999);
   s.bayes_kidnap_per_edge = c.Get<double>("bayes_kidnap_per_edge", 0.0, 0.5);
+  s.bayes_lost_confirm_edges = c.Get<int>("bayes_lost_confirm_edges", 0, 10);
   s.observation = LoadObservation(c, s.bayes_keep_threshold);
   if (c.Has("on_marked_maps")) {
     const StrictYaml marked = c.Child("on_marked_maps");
@@ -169,6 +170,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.keep_threshold = settings.bayes_keep_threshold;
     config.calibration = o.calibration;
     config.lost_threshold = o.bayes_lost_threshold;
+    config.lost_confirm_edges = settings.bayes_lost_confirm_edges;
     config.bayes.settings.max_step_in = settings.view.max_step_in;
   }
   return config;

@@ -75,6 +75,9 @@ struct LocalizerSettings {
   // (recovery::BayesSettings::kidnap_per_edge).
   double bayes_keep_threshold = 0.9;
   double bayes_kidnap_per_edge = 0.0;
+  // Further edges the evidence must stay against a pose given up before LOST is said
+  // (LocalizerConfig::lost_confirm_edges).
+  int bayes_lost_confirm_edges = 0;
 };
 
 // Whether any door of `m` carries a surveyed mark (DoorMarkOfPattern is not kUnknown).

@@ -252,6 +252,29 @@ TEST(LocalizerSettingsTest, AMarkedBarTheFilterCannotReachIsRefusedWithItsKey) {
   }
 }
 
+TEST(LocalizerSettingsTest, TheEdgesThatConfirmALossReachTheLocalizerAndAreBounded) {
+  const std::string key = "  bayes_lost_confirm_edges: ";
+  std::string text = Shipped();
+  const auto at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const auto from = at + key.size();
+  const std::size_t length = text.find('\n', from) - from;
+  const LocalizerSettings shipped = Load(text);
+  const map::Map m = HallWithDoor("");
+  EXPECT_EQ(MakeLocalizerConfig(ForMap(shipped, m), m).lost_confirm_edges,
+            shipped.bayes_lost_confirm_edges);
+  text.replace(from, length, "3");
+  EXPECT_EQ(MakeLocalizerConfig(ForMap(Load(text), m), m).lost_confirm_edges, 3);
+  text.replace(from, 1, "11");
+  try {
+    Load(text);
+    FAIL() << "accepted 11 edges";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
+    EXPECT_THAT(e.what(), HasSubstr("bayes_lost_confirm_edges"));
+  }
+}
+
 TEST(LocalizerSettingsTest, AFloorNamedInOnMapsGetsItsOwnCalibrationBeforeAnyOtherModel) {
   // HallWithDoor's map is named "hall".
   const LocalizerSettings s = Load(WithNarrowBlock(WithOwnMapBlock(Shipped(), "hall", "0.5")));

@@ -131,6 +131,7 @@ class Run {
   std::optional<WrongSpell> spell_;
   bool spell_is_kidnap_ = false;
   std::uint64_t given_up_serial_ = 0;  // the last Localizer::GivenUp seen
+  bool given_up_right_ = false;        // ... and it was a right pose
   long spell_edges_ = 0;
   double spell_in_ = 0.0;
   message::LocalizationStatus last_status_ = message::LocalizationStatus::kRecovering;
@@ -257,8 +258,10 @@ void Run::Watch(const message::LocalizationPose& p) {
     OpenSpell();
   }
   // LOST said for a right pose with no kidnap to notice (none yet, or the robot found itself
-  // again since). LOST for a wrong pose is the localizer doing its job.
-  if (turned_lost && left_right_pose && (!robot_.kidnapped() || result_.second)) {
+  // again since), as the pose was given up or edges after (lost_confirm_edges). LOST for a
+  // wrong pose is the localizer doing its job.
+  if (turned_lost && (left_right_pose || given_up_right_) &&
+      (!robot_.kidnapped() || result_.second)) {
     ++result_.false_losts;
   }
 }
@@ -267,8 +270,14 @@ void Run::Watch(const message::LocalizationPose& p) {
 void Run::WatchGivenUp(bool left_right_pose) {
   const std::optional<localizer::Localizer::GivenUp>& g =
       stack_.localizer().localizer().given_up();
-  if (!g || g->serial == given_up_serial_) return;
+  if (!g) return;
+  if (g->serial == given_up_serial_) {
+    // LOST may be said for it edges after it was given up.
+    if (!result_.given_up.empty()) result_.given_up.back().lost = g->lost;
+    return;
+  }
   given_up_serial_ = g->serial;
+  given_up_right_ = left_right_pose;
   RunResult::GivenUpPose p;
   p.pose = left_right_pose ? "right" : spell_ && spell_is_kidnap_ ? "kidnap" : "wrong";
   p.belief = g->belief;
