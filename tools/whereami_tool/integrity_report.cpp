@@ -76,7 +76,7 @@ Spread SpreadOf(const std::vector<double>& values) {
 
 IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
   IntegritySummary s;
-  std::vector<double> edges, feet, wrong_edges, alike;
+  std::vector<double> edges, feet, wrong_edges, alike, past_alike;
   std::map<std::string, int> ended_by;
   std::map<std::string, std::vector<double>> given_up_beliefs;
   std::map<std::string, int> given_up_lost;
@@ -98,6 +98,8 @@ IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
     edges.push_back(static_cast<double>(r.after_kidnap->edges));
     alike.push_back(r.kidnap_edges_alike);
     s.within_alike_plus_2 += r.after_kidnap->edges <= r.kidnap_edges_alike + 2;
+    past_alike.push_back(
+        static_cast<double>(std::max(0L, r.after_kidnap->edges - r.kidnap_edges_alike)));
     feet.push_back(r.after_kidnap->distance_ft);
     ++ended_by[r.after_kidnap->ended_by];
   }
@@ -105,6 +107,7 @@ IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
   s.feet = SpreadOf(feet);
   s.wrong_spell_edges = SpreadOf(wrong_edges);
   s.alike = SpreadOf(alike);
+  s.past_alike = SpreadOf(past_alike);
   s.ended_by.assign(ended_by.begin(), ended_by.end());
   for (const char* pose : {"right", "kidnap", "wrong"}) {
     const auto it = given_up_beliefs.find(pose);
@@ -131,6 +134,10 @@ void PrintIntegrity(const IntegritySummary& s, std::ostream& out) {
         "  the map shows the old place and the new alike for edges median {:.0f}, 95th "
         "percentile {:.0f}, max {:.0f}; {} of {} spells ended within 2 edges of that\n",
         s.alike.median, s.alike.p95, s.alike.max, s.within_alike_plus_2, s.kidnaps);
+    out << fmt::format(
+        "  sensed edges the wrong pose stayed LOCALIZED past those alike: median {:.0f}, 95th "
+        "percentile {:.0f}, max {:.0f}\n",
+        s.past_alike.median, s.past_alike.p95, s.past_alike.max);
   }
   out << fmt::format(
       "  {} runs watched: {} LOST said while the pose was right ({} runs); {} right poses given "
@@ -239,6 +246,7 @@ nlohmann::json ToJson(const IntegritySummary& s) {
           {"wrong_pose_feet", ToJson(s.feet)},
           {"edges_alike", ToJson(s.alike)},
           {"within_alike_plus_2", s.within_alike_plus_2},
+          {"edges_past_alike", ToJson(s.past_alike)},
           {"ended_by", ended},
           {"watched_runs", s.watched_runs},
           {"false_losts", s.false_losts},

@@ -25,6 +25,9 @@ struct IntegritySummary {
   Spread edges, feet;          // of the wrong pose's spell after each such kidnap
   Spread alike;                // edges the map shows alike at the old and the new place
   int within_alike_plus_2 = 0; // spells no longer than the edges alike plus 2
+  // The sensed edges each spell lasted past the edges alike (0 where it ended within them):
+  // what the localizer took once the map could tell the two places apart.
+  Spread past_alike;
   std::vector<std::pair<std::string, int>> ended_by;  // how those spells ended
   int watched_runs = 0;        // runs watched after their first pose
   int false_losts = 0;         // LOST said for a right pose with no kidnap to notice

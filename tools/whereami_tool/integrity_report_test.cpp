@@ -35,6 +35,10 @@ TEST(IntegrityReportTest, KidnapSpellsAreSpreadAndCountedAgainstTheEdgesAlike) {
   EXPECT_DOUBLE_EQ(s.edges.max, 6.0);
   EXPECT_DOUBLE_EQ(s.feet.max, 80.0);
   EXPECT_EQ(s.within_alike_plus_2, 2);  // 6 edges against 1 alike is beyond
+  // Past the edges alike: 1, 1 and 5.
+  EXPECT_DOUBLE_EQ(s.past_alike.median, 1.0);
+  EXPECT_DOUBLE_EQ(s.past_alike.max, 5.0);
+  EXPECT_EQ(s.past_alike.n, 3);
   ASSERT_EQ(s.ended_by.size(), 2u);
   EXPECT_EQ(s.ended_by[0], (std::pair<std::string, int>{"LOST", 1}));
   EXPECT_EQ(s.ended_by[1], (std::pair<std::string, int>{"RECOVERING", 2}));
