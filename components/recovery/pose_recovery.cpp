@@ -73,7 +73,7 @@ std::optional<std::string> CheckSensedEdge(const SensedEdge& edge) {
 }
 
 PoseRecovery::PoseRecovery(const map::MatchIndex& index, RecoveryConfig config)
-    : index_(index), config_(std::move(config)), matcher_(index, config_.base_tolerance) {
+    : config_(std::move(config)), matcher_(index, config_.base_tolerance) {
   ClassVector prior = config_.door_prior;
   double sum = 0;
   for (double p : prior) sum += p;

@@ -134,7 +134,6 @@ class PoseRecovery {
   bool RematchAtLevel(int level);
   bool TryRemoveDoors();
 
-  const map::MatchIndex& index_;
   RecoveryConfig config_;
   RelaxedMatcher matcher_;
   std::vector<map::SensedEdge> sequence_;

@@ -70,8 +70,12 @@ TEST(WhereAmIRunTest, AKidnappedRobotIsNoticedAndRecovers) {
     const auto kidnap = std::find_if(r.given_up.begin(), r.given_up.end(),
                                      [](const RunResult::GivenUpPose& g) { return g.pose == "kidnap"; });
     ASSERT_NE(kidnap, r.given_up.end());
-    if (r.after_kidnap->ended_by == "LOST") EXPECT_TRUE(kidnap->lost) << kidnap->belief;
-    if (kidnap->lost) EXPECT_TRUE(r.lost_detected) << kidnap->belief;
+    if (r.after_kidnap->ended_by == "LOST") {
+      EXPECT_TRUE(kidnap->lost) << kidnap->belief;
+    }
+    if (kidnap->lost) {
+      EXPECT_TRUE(r.lost_detected) << kidnap->belief;
+    }
   }
   ASSERT_TRUE(r.second.has_value()) << r.ended;
   EXPECT_TRUE(r.second->correct) << "edge " << r.second->edge << ", truth " << r.second->truth_edge;
