@@ -141,17 +141,20 @@ void PrintIntegrity(const IntegritySummary& s, std::ostream& out) {
   }
   out << fmt::format(
       "  {} runs watched: {} LOST said while the pose was right ({} runs); {} right poses given "
-      "up (to RECOVERING or LOST); {} other spells of a wrong LOCALIZED pose{}\n",
-      s.watched_runs, s.false_losts, s.runs_with_false_lost, s.right_poses_given_up,
-      s.wrong_spells,
+      "up with no kidnap to notice (to RECOVERING or LOST); {} other spells of a wrong LOCALIZED "
+      "pose{}\n",
+      s.watched_runs, s.false_losts, s.runs_with_false_lost, s.right_poses_given_up, s.wrong_spells,
       s.wrong_spells > 0 ? fmt::format(" (sensed edges median {:.0f}, max {:.0f})",
                                        s.wrong_spell_edges.median, s.wrong_spell_edges.max)
                          : std::string());
+  // Sorted by what each pose was when given up: a right pose given up between a kidnap and
+  // the next pose (kept across a jump to a place the map shows alike) is counted here too.
   for (const IntegritySummary::GivenUp& g : s.given_up) {
     out << fmt::format(
-        "  {} {} poses given up: {} LOST, {} RECOVERING; the filter's belief in them then: "
+        "  {} {} poses given up{}: {} LOST, {} RECOVERING; the filter's belief in them then: "
         "least {:.2g}, median {:.2g}\n",
-        g.n, g.pose, g.lost, g.n - g.lost, g.least_belief, g.median_belief);
+        g.n, g.pose, g.pose == "right" ? " (all, after a kidnap too)" : "", g.lost, g.n - g.lost,
+        g.least_belief, g.median_belief);
   }
 }
 

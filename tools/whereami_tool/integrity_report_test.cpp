@@ -67,7 +67,8 @@ TEST(IntegrityReportTest, PosesGivenUpAreGroupedByWhatTheyWereWithTheBeliefThen)
   EXPECT_EQ(s.runs_with_false_lost, 1);
   std::ostringstream out;
   PrintIntegrity(s, out);
-  EXPECT_NE(out.str().find("3 right poses given up: 0 LOST, 3 RECOVERING; the filter's belief "
+  EXPECT_NE(out.str().find("3 right poses given up (all, after a kidnap too): 0 LOST, 3 "
+                           "RECOVERING; the filter's belief "
                            "in them then: least 0.0027, median 0.5"),
             std::string::npos)
       << out.str();
