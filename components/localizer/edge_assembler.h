@@ -121,6 +121,8 @@ class EdgeAssembler {
   // edge before it turned back (NaN when no edge had been emitted, or in a turn).
   double reversal_travel_in() const { return reversal_travel_in_; }
   int travel_direction() const { return direction_; }
+  // The last odometer reading given to Advance.
+  double odometer_in() const { return odometer_in_; }
   // How far past the far end of the last emitted edge the pipeline has seen nothing: no
   // door emitted, none in view waiting to be decided, up to silent_margin_in behind the
   // optical axis. A door the map has within that stretch was missed (or the map place is

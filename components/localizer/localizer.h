@@ -115,6 +115,10 @@ class Localizer {
   // The edges sensed since the current recovery (or the last restart) began, in order.
   const std::vector<map::SensedEdge>& sensed_sequence() const { return assembler_.sequence(); }
   const std::vector<EdgeAssembler::Span>& sensed_spans() const { return assembler_.spans(); }
+  // The odometer reading last advanced to, and the travel direction along it (+1, -1; 0
+  // before the robot has moved): the frame of sensed_spans().
+  double odometer_in() const { return assembler_.odometer_in(); }
+  int travel_direction() const { return assembler_.travel_direction(); }
 
  private:
   void Rebuild(double odometer_in, const std::string& message);

@@ -101,6 +101,7 @@ class Run {
   void OpenSpell();
   void CloseSpell(const std::string& ended_by);
   void OnKidnap();
+  void CountEdgesSensedBeforeKidnap();
   void WatchGivenUp(bool left_right_pose);
   int EdgesAlike(int held_edge, int held_dir, int true_edge, int true_dir) const;
   void OnRecovery(const Recovery& r);
@@ -145,6 +146,17 @@ class Run {
     double at_in;
   };
   std::optional<KidnapCompare> kidnap_compare_;
+  // Where the localizer's odometer stood at the kidnap (the frame of its sensed spans), and
+  // how far into its sensed edges it had taken in: the edges it takes in after the kidnap
+  // that ended before it were sensed at the old place. Reset once an edge sensed after the
+  // kidnap comes (the rest are too) or the sequence restarts (the old place's are dropped).
+  struct KidnapSensing {
+    double odometer_in;
+    int direction;
+    std::size_t spans;
+    std::uint64_t edges_total;
+  };
+  std::optional<KidnapSensing> kidnap_sensing_;
   static constexpr double kCompareAfterIn = 12.0;
   double first_pose_in_ = -1.0;
   int last_view_edge_ = -1;
@@ -239,6 +251,7 @@ void Run::Watch(const message::LocalizationPose& p) {
   last_localized_right_ = localized && correct;
   last_status_ = p.status;
   if (!result_.first) return;  // watched from the first pose on
+  CountEdgesSensedBeforeKidnap();
   WatchGivenUp(left_right_pose);
   if (left_right_pose && (!robot_.kidnapped() || result_.second)) ++result_.right_poses_given_up;
   if (spell_) {
@@ -311,6 +324,7 @@ void Run::OpenSpell() {
 }
 
 void Run::CloseSpell(const std::string& ended_by) {
+  CountEdgesSensedBeforeKidnap();
   spell_->edges = static_cast<long>(stack_.localizer().localizer().edges_total()) - spell_edges_;
   spell_->distance_ft = InchesToFeet(sim_.Truth().distance_in - spell_in_);
   spell_->ended_by = ended_by;
@@ -373,6 +387,32 @@ void Run::OnKidnap() {
   }
   OpenSpell();
   spell_is_kidnap_ = true;
+  const localizer::Localizer& l = stack_.localizer().localizer();
+  if (l.travel_direction() != 0) {
+    kidnap_sensing_ = KidnapSensing{l.odometer_in(), l.travel_direction(), l.sensed_spans().size(),
+                                    l.edges_total()};
+  }
+}
+
+// The edges taken in since the last look that the robot sensed before the kidnap, counted in
+// the kidnap's spell (WrongSpell::edges_sensed_before).
+void Run::CountEdgesSensedBeforeKidnap() {
+  if (!spell_ || !spell_is_kidnap_ || !kidnap_sensing_) return;
+  KidnapSensing& k = *kidnap_sensing_;
+  const localizer::Localizer& l = stack_.localizer().localizer();
+  const std::vector<localizer::EdgeAssembler::Span>& spans = l.sensed_spans();
+  if (spans.size() != k.spans + (l.edges_total() - k.edges_total)) {
+    kidnap_sensing_.reset();  // the sequence restarted: what was pending was dropped
+    return;
+  }
+  for (; k.spans < spans.size(); ++k.spans) {
+    if (k.direction * (spans[k.spans].to_in - k.odometer_in) > 0.0) {
+      kidnap_sensing_.reset();  // ends past the kidnap: this edge and the rest are the new place's
+      return;
+    }
+    ++spell_->edges_sensed_before;
+  }
+  k.edges_total = l.edges_total();
 }
 
 void Run::OnRecovery(const Recovery& r) {

@@ -79,9 +79,13 @@ using Recovery = virtual_robot::PoseCheck;
 // how far the robot travelled before it said LOST or named the right place (from the kidnap,
 // or from the first wrong sample), and how it ended.
 struct WrongSpell {
-  long edges = 0;
+  long edges = 0;  // sensed edges the localizer took in while the wrong pose was held
   double distance_ft = 0.0;
   std::string ended_by;  // "LOST", "RECOVERING", "corrected", or "run ended"
+  // Of those, after a kidnap: edges the robot had sensed before it (a door is taken in once
+  // the camera is past it, the wall before it with it), of the old place: no evidence of the
+  // kidnap.
+  long edges_sensed_before = 0;
 };
 
 // A pose the localizer published with its confidence, and whether it named where the robot

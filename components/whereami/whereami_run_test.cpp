@@ -63,6 +63,8 @@ TEST(WhereAmIRunTest, AKidnappedRobotIsNoticedAndRecovers) {
       << r.after_kidnap->ended_by;
   EXPECT_LE(r.after_kidnap->edges, r.kidnap_edges_alike + 2)
       << r.after_kidnap->distance_ft << " ft";
+  EXPECT_GE(r.after_kidnap->edges_sensed_before, 0);
+  EXPECT_LE(r.after_kidnap->edges_sensed_before, r.after_kidnap->edges);
   // Given up, the pose is recorded as the kidnap's, LOST when the spell ended LOST (or edges
   // later, with bayes_lost_confirm_edges, when the spell ended RECOVERING), and only then
   // under the LOST threshold.

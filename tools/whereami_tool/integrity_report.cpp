@@ -76,7 +76,7 @@ Spread SpreadOf(const std::vector<double>& values) {
 
 IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
   IntegritySummary s;
-  std::vector<double> edges, feet, wrong_edges, alike, past_alike;
+  std::vector<double> edges, delivered, feet, wrong_edges, alike, past_alike;
   std::map<std::string, int> ended_by;
   std::map<std::string, std::vector<double>> given_up_beliefs;
   std::map<std::string, int> given_up_lost;
@@ -95,15 +95,17 @@ IntegritySummary SummarizeIntegrity(const std::vector<RunResult>& results) {
     }
     if (!r.after_kidnap || r.after_kidnap->ended_by == "not localized at the kidnap") continue;
     ++s.kidnaps;
-    edges.push_back(static_cast<double>(r.after_kidnap->edges));
+    const long after = r.after_kidnap->edges - r.after_kidnap->edges_sensed_before;
+    edges.push_back(static_cast<double>(after));
+    delivered.push_back(static_cast<double>(r.after_kidnap->edges));
     alike.push_back(r.kidnap_edges_alike);
-    s.within_alike_plus_2 += r.after_kidnap->edges <= r.kidnap_edges_alike + 2;
-    past_alike.push_back(
-        static_cast<double>(std::max(0L, r.after_kidnap->edges - r.kidnap_edges_alike)));
+    s.within_alike_plus_2 += after <= r.kidnap_edges_alike + 2;
+    past_alike.push_back(static_cast<double>(std::max(0L, after - r.kidnap_edges_alike)));
     feet.push_back(r.after_kidnap->distance_ft);
     ++ended_by[r.after_kidnap->ended_by];
   }
   s.edges = SpreadOf(edges);
+  s.edges_taken_in = SpreadOf(delivered);
   s.feet = SpreadOf(feet);
   s.wrong_spell_edges = SpreadOf(wrong_edges);
   s.alike = SpreadOf(alike);
@@ -130,6 +132,11 @@ void PrintIntegrity(const IntegritySummary& s, std::ostream& out) {
         "{:.1f}; ended by: {}\n",
         s.kidnaps, s.edges.median, s.edges.p95, s.edges.max, s.feet.median, s.feet.p95,
         s.feet.max, ends);
+    out << fmt::format(
+        "  (edges sensed from the kidnap on; the localizer took in median {:.0f}, 95th "
+        "percentile {:.0f}, max {:.0f} meanwhile, with those sensed before the kidnap and "
+        "decided after it)\n",
+        s.edges_taken_in.median, s.edges_taken_in.p95, s.edges_taken_in.max);
     out << fmt::format(
         "  the map shows the old place and the new alike for edges median {:.0f}, 95th "
         "percentile {:.0f}, max {:.0f}; {} of {} spells ended within 2 edges of that\n",
@@ -246,6 +253,7 @@ nlohmann::json ToJson(const IntegritySummary& s) {
   for (const auto& [how, n] : s.ended_by) ended[how] = n;
   return {{"kidnaps", s.kidnaps},
           {"wrong_pose_edges", ToJson(s.edges)},
+          {"wrong_pose_edges_taken_in", ToJson(s.edges_taken_in)},
           {"wrong_pose_feet", ToJson(s.feet)},
           {"edges_alike", ToJson(s.alike)},
           {"within_alike_plus_2", s.within_alike_plus_2},

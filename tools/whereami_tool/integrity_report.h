@@ -22,7 +22,12 @@ Spread SpreadOf(const std::vector<double>& values);
 
 struct IntegritySummary {
   int kidnaps = 0;             // runs kidnapped while LOCALIZED
-  Spread edges, feet;          // of the wrong pose's spell after each such kidnap
+  // Of the wrong pose's spell after each such kidnap: the edges sensed from the kidnap on,
+  // and the feet.
+  Spread edges, feet;
+  // The edges the localizer took in during the spell: those sensed from the kidnap on and
+  // those the robot had sensed before it (WrongSpell::edges_sensed_before).
+  Spread edges_taken_in;
   Spread alike;                // edges the map shows alike at the old and the new place
   int within_alike_plus_2 = 0; // spells no longer than the edges alike plus 2
   // The sensed edges each spell lasted past the edges alike (0 where it ended within them):

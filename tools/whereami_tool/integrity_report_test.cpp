@@ -44,6 +44,28 @@ TEST(IntegrityReportTest, KidnapSpellsAreSpreadAndCountedAgainstTheEdgesAlike) {
   EXPECT_EQ(s.ended_by[1], (std::pair<std::string, int>{"RECOVERING", 2}));
 }
 
+// A door is taken in once the camera is past it, the wall before it with it: edges sensed
+// at the old place before the kidnap may reach the localizer after it. They are no evidence
+// of the kidnap, so the spell is counted from the edge the robot was kidnapped in.
+TEST(IntegrityReportTest, EdgesSensedBeforeTheKidnapAreNotCountedInItsSpell) {
+  std::vector<RunResult> runs = {KidnapRun(4, 10.0, 1, "RECOVERING"),
+                                 KidnapRun(3, 12.0, 1, "RECOVERING")};
+  runs[0].after_kidnap->edges_sensed_before = 2;
+  const IntegritySummary s = SummarizeIntegrity(runs);
+  EXPECT_DOUBLE_EQ(s.edges.max, 3.0);  // 4 - 2 and 3 - 0
+  EXPECT_DOUBLE_EQ(s.edges.median, 2.5);
+  EXPECT_DOUBLE_EQ(s.edges_taken_in.max, 4.0);
+  EXPECT_DOUBLE_EQ(s.past_alike.max, 2.0);
+  EXPECT_DOUBLE_EQ(s.past_alike.median, 1.5);
+  EXPECT_EQ(s.within_alike_plus_2, 2);
+  std::ostringstream out;
+  PrintIntegrity(s, out);
+  EXPECT_NE(out.str().find("the localizer took in median 4, 95th percentile 4, max 4 meanwhile"),
+            std::string::npos)
+      << out.str();
+  EXPECT_EQ(ToJson(s)["wrong_pose_edges_taken_in"]["max"], 4.0);
+}
+
 TEST(IntegrityReportTest, PosesGivenUpAreGroupedByWhatTheyWereWithTheBeliefThen) {
   RunResult a;
   a.first = virtual_robot::PoseCheck{};

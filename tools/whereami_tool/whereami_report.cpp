@@ -342,18 +342,19 @@ void PrintRun(const RunResult& r, const RunSetup& setup, const ToolOptions& opti
   }
   out << fmt::format("            {}: {}", ToString(r.ending()), Describe(r.first));
   if (r.kidnapped) {
-    out << fmt::format("\n            kidnapped {:.0f} in along the ring: {}{}; then {}",
-                       r.kidnap_jump_in,
-                       r.lost_detected ? fmt::format("LOST after {:.1f} ft", r.lost_after_ft)
-                                       : std::string("never LOST"),
-                       r.after_kidnap ? fmt::format(" (wrong pose LOCALIZED for {} edges, {:.1f} "
-                                                    "ft, ended by {}; the map alike for {} edges)",
-                                                    r.after_kidnap->edges,
-                                                    r.after_kidnap->distance_ft,
-                                                    r.after_kidnap->ended_by,
-                                                    r.kidnap_edges_alike)
-                                      : std::string(),
-                       Describe(r.second));
+    out << fmt::format(
+        "\n            kidnapped {:.0f} in along the ring: {}{}; then {}", r.kidnap_jump_in,
+        r.lost_detected ? fmt::format("LOST after {:.1f} ft", r.lost_after_ft)
+                        : std::string("never LOST"),
+        r.after_kidnap
+            ? fmt::format(" (wrong pose LOCALIZED for {} edges sensed "
+                          "after the kidnap and {} before it, {:.1f} "
+                          "ft, ended by {}; the map alike for {} edges)",
+                          r.after_kidnap->edges - r.after_kidnap->edges_sensed_before,
+                          r.after_kidnap->edges_sensed_before, r.after_kidnap->distance_ft,
+                          r.after_kidnap->ended_by, r.kidnap_edges_alike)
+            : std::string(),
+        Describe(r.second));
   }
   if (r.false_losts > 0 || r.right_poses_given_up > 0 || !r.wrong_localized.empty()) {
     out << fmt::format(
@@ -389,34 +390,37 @@ nlohmann::json RunJson(const RunResult& r) {
   for (const RunResult::GivenUpPose& g : r.given_up) {
     given_up.push_back({{"pose", g.pose}, {"belief", g.belief}, {"lost", g.lost}});
   }
-  return {{"seed", r.seed},
-          {"start", r.start},
-          {"first", ToJson(r.first)},
-          {"kidnapped", r.kidnapped},
-          {"lost_detected", r.lost_detected},
-          {"lost_after_ft", r.lost_after_ft},
-          {"second", ToJson(r.second)},
-          {"kidnap_jump_in", r.kidnap_jump_in},
-          {"kidnap_edges_alike", r.kidnap_edges_alike},
-          {"after_kidnap", r.after_kidnap ? nlohmann::json{{"edges", r.after_kidnap->edges},
-                                                           {"distance_ft", r.after_kidnap->distance_ft},
-                                                           {"ended_by", r.after_kidnap->ended_by}}
-                                          : nlohmann::json(nullptr)},
-          {"false_losts", r.false_losts},
-          {"right_poses_given_up", r.right_poses_given_up},
-          {"given_up", given_up},
-          {"wrong_localized_spells", r.wrong_localized.size()},
-          {"frames", r.frames},
-          {"doors_observed", r.doors_observed},
-          {"collisions", r.collisions},
-          {"max_offset_in", r.max_offset_in},
-          {"max_heading_deg", r.max_heading_deg},
-          {"sim_s", r.sim_s},
-          {"ended", r.ended},
-          {"ending", ToString(r.ending())},
-          {"sensed", r.sensed_trace},
-          {"drops", r.drops},
-          {"start_redraws", r.start_redraws}};
+  return {
+      {"seed", r.seed},
+      {"start", r.start},
+      {"first", ToJson(r.first)},
+      {"kidnapped", r.kidnapped},
+      {"lost_detected", r.lost_detected},
+      {"lost_after_ft", r.lost_after_ft},
+      {"second", ToJson(r.second)},
+      {"kidnap_jump_in", r.kidnap_jump_in},
+      {"kidnap_edges_alike", r.kidnap_edges_alike},
+      {"after_kidnap",
+       r.after_kidnap ? nlohmann::json{{"edges", r.after_kidnap->edges},
+                                       {"edges_sensed_before", r.after_kidnap->edges_sensed_before},
+                                       {"distance_ft", r.after_kidnap->distance_ft},
+                                       {"ended_by", r.after_kidnap->ended_by}}
+                      : nlohmann::json(nullptr)},
+      {"false_losts", r.false_losts},
+      {"right_poses_given_up", r.right_poses_given_up},
+      {"given_up", given_up},
+      {"wrong_localized_spells", r.wrong_localized.size()},
+      {"frames", r.frames},
+      {"doors_observed", r.doors_observed},
+      {"collisions", r.collisions},
+      {"max_offset_in", r.max_offset_in},
+      {"max_heading_deg", r.max_heading_deg},
+      {"sim_s", r.sim_s},
+      {"ended", r.ended},
+      {"ending", ToString(r.ending())},
+      {"sensed", r.sensed_trace},
+      {"drops", r.drops},
+      {"start_redraws", r.start_redraws}};
 }
 
 // The runs added up, beside the paper's Table 6.22 where it has the map.
