@@ -81,14 +81,18 @@ bool Localizer::Advance(double odometer_in, double heading_rad) {
                                 : tracker_.status() == TrackStatus::kTracking;
   // While recovering, what has not been sensed since the last edge is evidence too: a door
   // or corner the best place expects by now that did not come keeps it from being declared
-  // (confirm_silent_in). (While localized the filter's belief is weighed by edges alone.)
-  if (bayes_ && !localized && edges.empty() && bayes_->edges() > 0) {
+  // (confirm_silent_in). While localized it tests the held pose when silence_tests_pose is
+  // set (else the filter's belief is weighed by edges alone).
+  bool silence_changed = false;
+  if (bayes_ && (!localized || config_.silence_tests_pose) && edges.empty() &&
+      bayes_->edges() > 0) {
     const std::optional<double> silent = assembler_.silent_in();
     if (silent && std::abs(*silent - bayes_->silent_in()) >= kSilenceStepIn) {
       bayes_->SetSilence(*silent);
+      silence_changed = true;
     }
   }
-  if (localized) return Track(odometer_in, edges);
+  if (localized) return Track(odometer_in, edges, silence_changed);
   const bool changed = Recover(odometer_in, edges);
   if (estimate_.status == Status::kLocalized) StartTracking(odometer_in);
   return changed;
@@ -113,13 +117,14 @@ void Localizer::ResetRecovery() {
   recovery_edges_ = 0;
 }
 
-bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& edges) {
+bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& edges,
+                      bool silence_changed) {
   edges_total_ += edges.size();
   tracker_.Advance(odometer_in);
   if (!edges.empty() && assembler_.last_edge_end_in()) {
     tracker_.OnEdges(edges, *assembler_.last_edge_end_in());
   }
-  if (bayes_) return TrackWithFilter(odometer_in, edges);
+  if (bayes_) return TrackWithFilter(odometer_in, edges, silence_changed);
   if (tracker_.status() == TrackStatus::kLost) {
     // The anticipated edges stopped coming (kidnapped, or the odometry drifted beyond
     // repair): recover from scratch.
@@ -136,17 +141,25 @@ bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& ed
 // filter's belief in the tracked place holds keep_threshold; a place the filter is as sure of
 // as a recovery needs takes over; otherwise the pose is given up: LOST when the belief in it
 // has fallen under lost_threshold (the evidence is against it), RECOVERING when it is merely
-// no longer sure. The filter's belief is kept either way: it goes on from there.
-bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges) {
-  if (edges.empty()) {
+// no longer sure. The filter's belief is kept either way: it goes on from there. A silence
+// (silence_tests_pose) can only give the pose up, to RECOVERING.
+bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges,
+                                bool silence_changed) {
+  if (edges.empty() && !silence_changed) {
     PublishTracked(posterior_, tracker_.message());
     return false;
   }
-  ExtendBayes(edges);
+  if (!edges.empty()) ExtendBayes(edges);
   const double tracked = BeliefInTrackedPose();
   const recovery::PoseBelief& best = bayes_->best();
   const bool near = NearTrackedPose(best);
-  if ((tracked >= config_.keep_threshold || near) && best.probability >= config_.keep_threshold) {
+  const bool holds =
+      (tracked >= config_.keep_threshold || near) && best.probability >= config_.keep_threshold;
+  if (edges.empty() && holds) {
+    PublishTracked(posterior_, tracker_.message());
+    return false;
+  }
+  if (holds) {
     // The place holds. The tracker dead-reckons between edges (through a corner's turn, or
     // after a reversal, it can slip an edge or lose its anchor): it is put where the filter
     // places the robot after this edge.
@@ -157,7 +170,7 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
       message = "re-anchored on the sensed edges: " + tracker_.message();
     }
     PublishTracked(std::max(tracked, best.probability), message);
-  } else if (best.probability >= config_.bayes.settings.threshold) {
+  } else if (!edges.empty() && best.probability >= config_.bayes.settings.threshold) {
     // The filter is as sure of another place as a recovery needs to be: the pose moves there.
     Rebuild(odometer_in, estimate_.message);
     StartTracking(odometer_in);
@@ -168,16 +181,19 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
     // misreads the model rates apart can sink a right pose for an edge; a kidnap keeps it
     // sunk).
     const bool against = tracked < config_.lost_threshold;
-    const bool lost = against && config_.lost_confirm_edges == 0;
+    const bool lost = against && config_.lost_confirm_edges == 0 && !edges.empty();
     const TrackedPose p = tracker_.pose();
     given_up_ = GivenUp{p.ring, p.edge, p.dir, tracked, lost,
                         (given_up_ ? given_up_->serial : 0) + 1};
     LeaveLocalized(
         odometer_in, lost ? Status::kLost : Status::kRecovering,
-        fmt::format("the sensed edges {} the pose (belief {:.3f}): recovering from the "
-                    "filter's belief{}",
-                    against ? "are against" : "no longer confirm", tracked,
-                    against && !lost ? "; LOST if the next edges are against it too" : ""));
+        fmt::format(
+            "{} the pose (belief {:.3f}): recovering from the filter's belief{}",
+            edges.empty()
+                ? fmt::format("the silence {:.0f} in past the last edge {}", bayes_->silent_in(),
+                              against ? "is against" : "no longer confirms")
+                : fmt::format("the sensed edges {}", against ? "are against" : "no longer confirm"),
+            tracked, against && !lost ? "; LOST if the next edges are against it too" : ""));
     loss_pending_ = against && !lost;
   }
   return true;

@@ -74,6 +74,10 @@ struct LocalizerConfig {
   // Further sensed edges after which the belief in a pose given up must still be under
   // lost_threshold before LOST is said (RECOVERING meanwhile); 0: LOST at once.
   int lost_confirm_edges = 0;
+  // Once localized, what has not been sensed since the last edge is weighed too, as in
+  // recovery (a door the held place has by now that did not come): it can give the pose up
+  // (RECOVERING; LOST only if the next edges are against it too), never move it.
+  bool silence_tests_pose = false;
   // Bayes: the published confidence from the filter's posterior (identity by default).
   ConfidenceCalibration calibration;
 };
@@ -130,12 +134,13 @@ class Localizer {
   Hypothesis MakeHypothesisAt(int ring, int edge, int dir, double offset_in,
                               double probability) const;
   // Maintenance after localization; true if the estimate changed.
-  bool Track(double odometer_in, const std::vector<map::SensedEdge>& edges);
+  bool Track(double odometer_in, const std::vector<map::SensedEdge>& edges, bool silence_changed);
   // Recovery from no knowledge; true if the estimate changed.
   bool Recover(double odometer_in, const std::vector<map::SensedEdge>& edges);
   void StartTracking(double odometer_in);
   void ResetRecovery();
-  bool TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges);
+  bool TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges,
+                       bool silence_changed);
   // The tracked pose as the estimate: LOCALIZED with the filter's `posterior` (calibrated
   // as the confidence).
   void PublishTracked(double posterior, const std::string& message);

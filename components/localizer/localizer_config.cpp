@@ -124,6 +124,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.bayes_keep_threshold = c.Get<double>("bayes_keep_threshold", 0.0, 0.999999);
   s.bayes_kidnap_per_edge = c.Get<double>("bayes_kidnap_per_edge", 0.0, 0.5);
   s.bayes_lost_confirm_edges = c.Get<int>("bayes_lost_confirm_edges", 0, 10);
+  s.bayes_silence_tests_pose = c.Get<bool>("bayes_silence_tests_pose");
   s.observation = LoadObservation(c, s.bayes_keep_threshold);
   if (c.Has("on_marked_maps")) {
     const StrictYaml marked = c.Child("on_marked_maps");
@@ -171,6 +172,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.calibration = o.calibration;
     config.lost_threshold = o.bayes_lost_threshold;
     config.lost_confirm_edges = settings.bayes_lost_confirm_edges;
+    config.silence_tests_pose = settings.bayes_silence_tests_pose;
     config.bayes.settings.max_step_in = settings.view.max_step_in;
   }
   return config;

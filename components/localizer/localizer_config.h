@@ -78,6 +78,9 @@ struct LocalizerSettings {
   // Further edges the evidence must stay against a pose given up before LOST is said
   // (LocalizerConfig::lost_confirm_edges).
   int bayes_lost_confirm_edges = 0;
+  // Once localized, the silence past the last sensed edge tests the pose too
+  // (LocalizerConfig::silence_tests_pose).
+  bool bayes_silence_tests_pose = false;
 };
 
 // Whether any door of `m` carries a surveyed mark (DoorMarkOfPattern is not kUnknown).

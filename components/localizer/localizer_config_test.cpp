@@ -275,6 +275,28 @@ TEST(LocalizerSettingsTest, TheEdgesThatConfirmALossReachTheLocalizerAndAreBound
   }
 }
 
+TEST(LocalizerSettingsTest, WhetherTheSilenceTestsAHeldPoseReachesTheLocalizer) {
+  const std::string key = "  bayes_silence_tests_pose: ";
+  std::string text = Shipped();
+  const auto at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const auto from = at + key.size();
+  const std::size_t length = text.find('\n', from) - from;
+  const map::Map m = HallWithDoor("");
+  text.replace(from, length, "true");
+  EXPECT_TRUE(MakeLocalizerConfig(ForMap(Load(text), m), m).silence_tests_pose);
+  text.replace(from, 4, "false");
+  EXPECT_FALSE(MakeLocalizerConfig(ForMap(Load(text), m), m).silence_tests_pose);
+  text.replace(from, 5, "often");
+  try {
+    Load(text);
+    FAIL() << "accepted 'often'";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
+    EXPECT_THAT(e.what(), HasSubstr("bayes_silence_tests_pose"));
+  }
+}
+
 TEST(LocalizerSettingsTest, AFloorNamedInOnMapsGetsItsOwnCalibrationBeforeAnyOtherModel) {
   // HallWithDoor's map is named "hall".
   const LocalizerSettings s = Load(WithNarrowBlock(WithOwnMapBlock(Shipped(), "hall", "0.5")));

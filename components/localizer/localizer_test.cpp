@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <tuple>
 #include <utility>
@@ -562,6 +563,51 @@ std::pair<std::unique_ptr<Localizer>, std::vector<Status>> Kidnapped(const map::
   EXPECT_FALSE(loc->given_up().has_value());
   auto after = DriveSegment(map, *loc, 10.0 + 1400.0 + 463.0, 1406.24, 6000.0);
   return {std::move(loc), std::move(after)};
+}
+
+// Kidnapped half a lap on the small hall as in Kidnapped(), driven step by step: the
+// odometer reading at which the held pose was first given up (infinite: never), and the
+// localizer then.
+std::pair<double, std::unique_ptr<Localizer>> GivenUpAfterAKidnap(const map::Map& map,
+                                                                  const LocalizerConfig& config) {
+  auto loc = std::make_unique<Localizer>(map, config);
+  DriveSegment(map, *loc, 10.0, 0.0, 1400.0);
+  EXPECT_EQ(loc->estimate().status, Status::kLocalized);
+  for (double odo = 1406.24; odo <= 6000.0; odo += 6.24) {
+    DriveSegment(map, *loc, 10.0 + 1400.0 + 463.0 + (odo - 1406.24), odo, odo);
+    if (loc->estimate().status != Status::kLocalized) return {odo, std::move(loc)};
+  }
+  return {std::numeric_limits<double>::infinity(), std::move(loc)};
+}
+
+TEST(LocalizerTest, TheSilenceWhereTheHeldPlaceHasADoorGivesAKidnappedPoseUpSooner) {
+  const map::Map map = MakeMap(DistinctHall());
+  const LocalizerConfig edges_only = HoldingBayesConfig(map, 1e-3, 1);
+  LocalizerConfig with_silence = edges_only;
+  with_silence.silence_tests_pose = true;
+  const auto [by_edges, a] = GivenUpAfterAKidnap(map, edges_only);
+  const auto [by_silence, b] = GivenUpAfterAKidnap(map, with_silence);
+  ASSERT_TRUE(std::isfinite(by_edges));
+  EXPECT_LT(by_silence, by_edges);
+  EXPECT_NE(b->estimate().message.find("the silence"), std::string::npos) << b->estimate().message;
+  // The silence gives the pose up; it never says LOST on its own.
+  EXPECT_EQ(b->estimate().status, Status::kRecovering);
+  ASSERT_TRUE(b->given_up().has_value());
+  EXPECT_FALSE(b->given_up()->lost);
+}
+
+TEST(LocalizerTest, TheSilenceGivesUpNoPoseWhoseDoorsComeAsTheMapHasThem) {
+  const map::Map map = MakeMap(DistinctHall());
+  LocalizerConfig config = HoldingBayesConfig(map, 1e-3, 1);
+  config.silence_tests_pose = true;
+  Localizer loc(map, config);
+  DriveSegment(map, loc, 10.0, 0.0, 1400.0);
+  ASSERT_EQ(loc.estimate().status, Status::kLocalized);
+  const std::vector<Status> after = DriveSegment(map, loc, 10.0 + 1400.0, 1400.0, 6000.0);
+  EXPECT_EQ(std::count(after.begin(), after.end(), Status::kLocalized),
+            static_cast<long>(after.size()))
+      << loc.estimate().message;
+  EXPECT_FALSE(loc.given_up().has_value());
 }
 
 TEST(LocalizerTest, APoseGivenUpIsLostOnlyWhenTheFiltersBeliefInItIsUnderTheLostThreshold) {
