@@ -104,6 +104,7 @@ void Localizer::StartTracking(double odometer_in) {
   const Hypothesis& h = estimate_.hypotheses.front();
   tracker_.Start(TrackedPose{h.ring, h.edge, h.dir, h.offset_in}, odometer_in,
                  assembler_.travel_direction());
+  held_at_edge_ = tracker_.pose();
 }
 
 void Localizer::ResetRecovery() {
@@ -150,7 +151,7 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
     return false;
   }
   if (!edges.empty()) ExtendBayes(edges);
-  const double tracked = BeliefInTrackedPose();
+  const double tracked = edges.empty() ? BeliefSinceLastEdge() : BeliefInTrackedPose();
   const recovery::PoseBelief& best = bayes_->best();
   const bool near = NearTrackedPose(best);
   const bool holds =
@@ -170,6 +171,7 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
       message = "re-anchored on the sensed edges: " + tracker_.message();
     }
     PublishTracked(std::max(tracked, best.probability), message);
+    held_at_edge_ = tracker_.pose();
   } else if (!edges.empty() && best.probability >= config_.bayes.settings.threshold) {
     // The filter is as sure of another place as a recovery needs to be: the pose moves there.
     Rebuild(odometer_in, estimate_.message);
@@ -274,6 +276,17 @@ bool Localizer::NearTrackedPose(const recovery::PoseBelief& b) const {
 double Localizer::BeliefInTrackedPose() const {
   const TrackedPose p = tracker_.pose();
   return BeliefNear(p.ring, p.edge, p.dir);
+}
+
+double Localizer::BeliefSinceLastEdge() const {
+  const TrackedPose p = tracker_.pose();
+  const TrackedPose& a = held_at_edge_;
+  if (p.ring != a.ring || p.dir != a.dir) return BeliefInTrackedPose();
+  const int n = index_.RingSize(a.ring);
+  int passed = a.dir * (p.edge - a.edge);
+  if (index_.RingClosed(a.ring)) passed = (passed % n + n) % n;
+  if (passed < 0 || passed > n / 2) passed = 0;  // slipped back: the place held itself
+  return BeliefNear(a.ring, a.edge, a.dir, std::min(passed, kNearEdges));
 }
 
 double Localizer::BeliefNear(int ring, int edge, int dir, int ahead) const {

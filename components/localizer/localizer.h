@@ -154,6 +154,10 @@ class Localizer {
   // The share of the filter's belief at the robot in ring-local edge `edge` of `ring`,
   // travelling `dir`, a neighbour, or up to `ahead` edges further on.
   double BeliefNear(int ring, int edge, int dir, int ahead = 0) const;
+  // Between edges: the belief in the place held at the last sensed edge, carried on by the
+  // map edges the tracker has passed since (it dead-reckons past doors the filter has not
+  // been given, missed or not yet decided).
+  double BeliefSinceLastEdge() const;
   // A pose given up with the evidence against it: LOST once `lost_confirm_edges` further
   // edges keep the belief in it (moved on by the edges sensed) under lost_threshold.
   void ConfirmLoss();
@@ -177,6 +181,7 @@ class Localizer {
   double kidnap_per_edge_ = 0.0;  // the filter's kidnap share while a pose is held
   bool was_localized_ = false;
   std::optional<GivenUp> given_up_;
+  TrackedPose held_at_edge_;   // the tracked pose as the last sensed edge left it
   bool loss_pending_ = false;  // given_up_ is against the evidence, LOST not yet said
 };
 
