@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "common/config_paths.h"
 #include "common/input_error.h"
@@ -79,6 +80,28 @@ std::string WithOwnMapBlock(std::string text, const std::string& name, const std
       "      bayes_lost_threshold: 0.001\n" + "      bayes_false_door_fit: false\n" +
       "      bayes_max_missed_doors: 2\n" + extra;
   return text.insert(at + maps.size(), block);
+}
+
+// `text` with the value of the first line `key` ("  bayes_lost_confirm_edges: ") at or after
+// offset `from` set to `value`.
+std::string WithValue(std::string text, const std::string& key, const std::string& value,
+                      std::size_t from = 0) {
+  const auto at = text.find(key, from);
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return text;
+  const auto begin = at + key.size();
+  return text.replace(begin, text.find('\n', begin) - begin, value);
+}
+
+// Loading `text` fails with an InputError that names the file's line and each of `words`.
+void ExpectRefused(const std::string& text, const std::vector<std::string>& words) {
+  try {
+    Load(text);
+    ADD_FAILURE() << "accepted: " << words.back();
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
+    for (const std::string& w : words) EXPECT_THAT(e.what(), HasSubstr(w));
+  }
 }
 
 map::Map HallWithDoor(const std::string& pattern, std::optional<double> width_in = std::nullopt) {
@@ -235,66 +258,37 @@ TEST(LocalizerSettingsTest, AnUnknownKeyInTheMarkedBlockIsRefusedWithItsPath) {
 }
 
 TEST(LocalizerSettingsTest, AMarkedBarTheFilterCannotReachIsRefusedWithItsKey) {
-  std::string text = Shipped();
+  const std::string text = Shipped();
   const auto block = text.find("  on_marked_maps:\n");
   ASSERT_NE(block, std::string::npos);
-  const std::string key = "    localized_confidence: ";
-  const auto at = text.find(key, block);
-  ASSERT_NE(at, std::string::npos);
-  const auto from = at + key.size();
-  text.replace(from, text.find('\n', from) - from, "0.99999");
-  try {
-    Load(text);
-    FAIL() << "accepted a bar that needs a posterior over 0.999999";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("on_marked_maps"));
-    EXPECT_THAT(e.what(), HasSubstr("localized_confidence"));
-  }
+  // A bar that needs a posterior over 0.999999.
+  ExpectRefused(WithValue(text, "    localized_confidence: ", "0.99999", block),
+                {"on_marked_maps", "localized_confidence"});
 }
 
 TEST(LocalizerSettingsTest, TheEdgesThatConfirmALossReachTheLocalizerAndAreBounded) {
   const std::string key = "  bayes_lost_confirm_edges: ";
-  std::string text = Shipped();
-  const auto at = text.find(key);
-  ASSERT_NE(at, std::string::npos);
-  const auto from = at + key.size();
-  const std::size_t length = text.find('\n', from) - from;
+  const std::string text = Shipped();
   const LocalizerSettings shipped = Load(text);
   const map::Map m = HallWithDoor("");
   EXPECT_EQ(MakeLocalizerConfig(ForMap(shipped, m), m).lost_confirm_edges,
             shipped.bayes_lost_confirm_edges);
-  text.replace(from, length, "3");
-  EXPECT_EQ(MakeLocalizerConfig(ForMap(Load(text), m), m).lost_confirm_edges, 3);
-  text.replace(from, 1, "11");
-  try {
-    Load(text);
-    FAIL() << "accepted 11 edges";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
-    EXPECT_THAT(e.what(), HasSubstr("bayes_lost_confirm_edges"));
-  }
+  EXPECT_EQ(MakeLocalizerConfig(ForMap(Load(WithValue(text, key, "3")), m), m).lost_confirm_edges,
+            3);
+  ExpectRefused(WithValue(text, key, "11"), {"bayes_lost_confirm_edges"});
 }
 
 TEST(LocalizerSettingsTest, WhetherTheSilenceTestsAHeldPoseReachesTheLocalizer) {
   const std::string key = "  bayes_silence_tests_pose: ";
-  std::string text = Shipped();
-  const auto at = text.find(key);
-  ASSERT_NE(at, std::string::npos);
-  const auto from = at + key.size();
-  const std::size_t length = text.find('\n', from) - from;
+  const std::string text = Shipped();
   const map::Map m = HallWithDoor("");
-  text.replace(from, length, "true");
-  EXPECT_TRUE(MakeLocalizerConfig(ForMap(Load(text), m), m).silence_tests_pose);
-  text.replace(from, 4, "false");
-  EXPECT_FALSE(MakeLocalizerConfig(ForMap(Load(text), m), m).silence_tests_pose);
-  text.replace(from, 5, "often");
-  try {
-    Load(text);
-    FAIL() << "accepted 'often'";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("localizer.yaml:"));
-    EXPECT_THAT(e.what(), HasSubstr("bayes_silence_tests_pose"));
+  for (const bool on : {true, false}) {
+    const std::string value = on ? "true" : "false";
+    EXPECT_EQ(
+        MakeLocalizerConfig(ForMap(Load(WithValue(text, key, value)), m), m).silence_tests_pose,
+        on);
   }
+  ExpectRefused(WithValue(text, key, "often"), {"bayes_silence_tests_pose"});
 }
 
 TEST(LocalizerSettingsTest, AFloorNamedInOnMapsGetsItsOwnCalibrationBeforeAnyOtherModel) {
