@@ -104,7 +104,10 @@ void Localizer::StartTracking(double odometer_in) {
   const Hypothesis& h = estimate_.hypotheses.front();
   tracker_.Start(TrackedPose{h.ring, h.edge, h.dir, h.offset_in}, odometer_in,
                  assembler_.travel_direction());
-  held_at_edge_ = tracker_.pose();
+  // A pose declared on the silence past the last edge starts the tracker edges beyond the
+  // place the filter holds at that edge: the silence is weighed from the filter's place.
+  const bool filter_place = bayes_ && bayes_->edges() > 0 && bayes_->best().edge >= 0;
+  held_at_edge_ = filter_place ? FilterPlace(bayes_->best()) : tracker_.pose();
 }
 
 void Localizer::ResetRecovery() {
@@ -255,12 +258,17 @@ void Localizer::PublishTracked(double posterior, const std::string& message) {
   estimate_.message = message;
 }
 
-bool Localizer::TrackerAtFilterPlace(const recovery::PoseBelief& b) const {
-  // The filter's state (g, dir): g sensed last, the robot in the edge after it.
+TrackedPose Localizer::FilterPlace(const recovery::PoseBelief& b) const {
   const int next = index_.Step(b.edge, b.dir);
   const int g = next >= 0 ? next : b.edge;
+  const int ring = index_.RingOf(g);
+  return TrackedPose{ring, g - index_.RingOffset(ring), b.dir, 0.0};
+}
+
+bool Localizer::TrackerAtFilterPlace(const recovery::PoseBelief& b) const {
+  const TrackedPose f = FilterPlace(b);
   const TrackedPose p = tracker_.pose();
-  return p.dir == b.dir && index_.RingOf(g) == p.ring && g - index_.RingOffset(p.ring) == p.edge;
+  return p.dir == f.dir && p.ring == f.ring && p.edge == f.edge;
 }
 
 bool Localizer::NearTrackedPose(const recovery::PoseBelief& b) const {

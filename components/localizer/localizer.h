@@ -145,6 +145,8 @@ class Localizer {
   // as the confidence).
   void PublishTracked(double posterior, const std::string& message);
   double Confidence(double posterior) const;
+  // The edge the filter's place (g, dir) puts the robot in: the one after g, g sensed last.
+  TrackedPose FilterPlace(const recovery::PoseBelief& b) const;
   // Whether the tracker has the robot in the edge the filter's place puts it in.
   bool TrackerAtFilterPlace(const recovery::PoseBelief& b) const;
   // Whether a place of the filter is the tracked pose slipped by a few edges.
@@ -181,7 +183,7 @@ class Localizer {
   double kidnap_per_edge_ = 0.0;  // the filter's kidnap share while a pose is held
   bool was_localized_ = false;
   std::optional<GivenUp> given_up_;
-  TrackedPose held_at_edge_;   // the tracked pose as the last sensed edge left it
+  TrackedPose held_at_edge_;   // the place held as the last sensed edge left it
   bool loss_pending_ = false;  // given_up_ is against the evidence, LOST not yet said
 };
 

@@ -610,6 +610,32 @@ TEST(LocalizerTest, TheSilenceGivesUpNoPoseWhoseDoorsComeAsTheMapHasThem) {
   EXPECT_FALSE(loc.given_up().has_value());
 }
 
+TEST(LocalizerTest, APoseDeclaredOnTheSilenceIsTestedFromThePlaceTheFilterHolds) {
+  // Declared on the silence past the last edge (bayes_confirm_silent_in), the tracker starts
+  // edges beyond the filter's place; the silence that follows is weighed from that place.
+  const map::Map map = MakeMap(DistinctHall());
+  LocalizerConfig config = HoldingBayesConfig(map, 1e-3, 1);
+  config.bayes.settings.confirm_silent_in = 60.0;
+  config.silence_tests_pose = true;
+  int declared_on_silence = 0;
+  for (double start = 0.0; start < 926.0; start += 50.0) {
+    Localizer loc(map, config);
+    double odo = 0.0;
+    for (; odo <= 1400.0 && loc.estimate().status != Status::kLocalized; odo += 6.24) {
+      DriveSegment(map, loc, start + odo, odo, odo);
+    }
+    ASSERT_EQ(loc.estimate().status, Status::kLocalized) << "start " << start;
+    if (loc.estimate().message.find("sensed past the last edge") == std::string::npos) continue;
+    ++declared_on_silence;
+    const std::vector<Status> after = DriveSegment(map, loc, start + odo, odo, odo + 4600.0);
+    EXPECT_EQ(std::count(after.begin(), after.end(), Status::kLocalized),
+              static_cast<long>(after.size()))
+        << "start " << start << ": " << loc.estimate().message;
+    EXPECT_FALSE(loc.given_up().has_value()) << "start " << start;
+  }
+  EXPECT_GT(declared_on_silence, 0);
+}
+
 TEST(LocalizerTest, APoseGivenUpIsLostOnlyWhenTheFiltersBeliefInItIsUnderTheLostThreshold) {
   const map::Map map = MakeMap(DistinctHall());
   // The same kidnap, the same evidence: given up RECOVERING under a low LOST threshold...
