@@ -382,10 +382,20 @@ void MarkLines(const RowProfile& profile, const RibbonDetectorParams& params,
   constexpr double kSidePx = 6.0;
   for (Footprint& fp : *footprints) {
     const auto [core_lo, core_hi] = LineCore(fp);
-    const double core = profile.Mean(core_lo, core_hi);
     const double left = profile.Mean(fp.first_bin - kHalf - kSidePx, fp.first_bin - kHalf);
     const double right = profile.Mean(fp.last_bin + kHalf, fp.last_bin + kHalf + kSidePx);
-    if (std::isnan(core) || std::isnan(left) || std::isnan(right)) continue;
+    if (std::isnan(left) || std::isnan(right)) continue;
+    // The line's own level: the core's column farthest from the sides' level. The processed
+    // rows' mean smears a thin line that crosses them slanted (a rolled camera) over the
+    // whole core, whose mean would then take in its shoulders; its depth shows where it is
+    // darkest (or lightest).
+    const double sides = 0.5 * (left + right);
+    double core = std::nan("");
+    for (int c = static_cast<int>(core_lo); c <= static_cast<int>(core_hi); ++c) {
+      const double level = profile.Mean(c, c);
+      if (std::isnan(core) || std::abs(level - sides) > std::abs(core - sides)) core = level;
+    }
+    if (std::isnan(core)) continue;
     const double dl = core - left, dr = core - right;
     fp.line = std::abs(left - right) <= params.line_side_agreement && dl * dr > 0.0 &&
               std::min(std::abs(dl), std::abs(dr)) >= params.min_edge_level;

@@ -87,9 +87,11 @@ struct RibbonDetectorParams {
   // of a closed double door is framed by its casing and the seam), but it is not a step:
   // its polarity says nothing, and the face's flank on that side is the line itself, not
   // the other leaf beyond it. A footprint is such a line when the levels just either side
-  // of its clump agree within line_side_agreement grey levels and the clump's core differs
-  // from both, the same way, by at least min_edge_level. Off (the default, as shipped in
-  // configs/landmark.yaml): every footprint is a step.
+  // of its clump agree within line_side_agreement grey levels and the column of the clump's
+  // core farthest from them differs from both, the same way, by at least min_edge_level (the
+  // processed rows' mean smears a line a rolled camera sees slanted; its depth shows where
+  // it is darkest). Off (the default, as shipped in configs/landmark.yaml): every footprint
+  // is a step.
   bool seam_lines = false;
   double line_side_agreement = 12.0;
   int max_pairs = 32;

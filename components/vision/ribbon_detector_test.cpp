@@ -147,6 +147,26 @@ TEST(RibbonDetectorTest, AStepBetweenTwoLevelsIsNotALine) {
   for (const Footprint& fp : result.detection.footprints) EXPECT_FALSE(fp.line) << fp.column_px;
 }
 
+TEST(RibbonDetectorTest, AThinLineSeenWithRollIsStillALine) {
+  // A 3 px seam 20 grey levels darker than the leaf, crossing the outer processed rows
+  // (132 and 348) 2 px either side of where it crosses the centre row: a camera rolled by
+  // about a degree. The processed rows' mean level smears it over 7 px; at its darkest
+  // column it is still 20 levels under the leaf on both sides.
+  cv::Mat image = Band(100, 511, 70, 125);
+  for (int row = 0; row < image.rows; ++row) {
+    const int col = 300 + static_cast<int>(std::lround(2.0 * (row - 240) / 108.0));
+    image.row(row).colRange(col, col + 3).setTo(cv::Scalar(105));
+  }
+  RibbonDetectorParams seams;
+  seams.seam_lines = true;
+  const DetectResult result = RibbonDetector(seams).Detect(image, 60.0);
+  ASSERT_TRUE(result.ok()) << result.message;
+  ASSERT_THAT(result.detection.footprints, SizeIs(2));
+  EXPECT_FALSE(result.detection.footprints[0].line);
+  EXPECT_TRUE(result.detection.footprints[1].line);
+  EXPECT_THAT(result.detection.footprints[1].column_px, DoubleNear(301.0, 1.5));
+}
+
 TEST(RibbonDetectorTest, ThresholdPassesAtMostTheTopFivePercent) {
   cv::Mat image(480, 512, CV_8UC1);
   cv::RNG rng(9);
