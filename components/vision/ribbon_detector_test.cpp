@@ -151,7 +151,7 @@ TEST(RibbonDetectorTest, AThinLineSeenWithRollIsStillALine) {
   // A 3 px seam 20 grey levels darker than the leaf, crossing the outer processed rows
   // (132 and 348) 2 px either side of where it crosses the centre row: a camera rolled by
   // about a degree. The processed rows' mean level smears it over 7 px; at its darkest
-  // column it is still 20 levels under the leaf on both sides.
+  // columns, where four of the five rows cross it, it is still 16 levels under the leaf.
   cv::Mat image = Band(100, 511, 70, 125);
   for (int row = 0; row < image.rows; ++row) {
     const int col = 300 + static_cast<int>(std::lround(2.0 * (row - 240) / 108.0));
