@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   app.add_option("--error-model", o.error_model_path,
                  "Error model file (default configs/error_model_paper.yaml)");
   app.add_option("--config", o.config_path, "Study settings (default configs/study.yaml)");
+  app.add_option("--start-ring", o.start_rings,
+                 "Start runs only beside edges of this ring (repeatable; default: every ring)");
   app.add_option("--json", o.json_path, "Write every figure as JSON");
   app.add_option("--png-dir", o.png_dir, "Write histograms (Figures 6.3, 6.5) as PNG here");
   bool no_progress = false;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "common/seeds.h"
 
@@ -20,13 +21,24 @@ std::uint64_t RunSeed(std::uint64_t seed, std::uint64_t trial, std::uint64_t run
   return SplitMix64(SplitMix64(SplitMix64(seed) ^ trial) ^ run);
 }
 
-RunStart DrawStart(const map::MatchIndex& index, std::mt19937_64& rng) {
+RunStart DrawStart(const map::MatchIndex& index, std::mt19937_64& rng,
+                   const std::vector<int>& rings) {
+  const auto drawn = [&](int g) {
+    return rings.empty() || std::find(rings.begin(), rings.end(), index.RingOf(g)) != rings.end();
+  };
   double total = 0;
-  for (int g = 0; g < index.EdgeCount(); ++g) total += index.metric(g);
+  int last = -1;
+  for (int g = 0; g < index.EdgeCount(); ++g) {
+    if (!drawn(g)) continue;
+    total += index.metric(g);
+    last = g;
+  }
+  if (last < 0) throw std::invalid_argument("no edge to start beside on the rings given");
   double x = U01(rng) * total;
   RunStart s;
-  s.edge = index.EdgeCount() - 1;
+  s.edge = last;
   for (int g = 0; g < index.EdgeCount(); ++g) {
+    if (!drawn(g)) continue;
     if (x < index.metric(g)) {
       s.edge = g;
       break;
@@ -41,9 +53,9 @@ RunStart DrawStart(const map::MatchIndex& index, std::mt19937_64& rng) {
 
 SensedStream::SensedStream(const map::MatchIndex& index, const Confusion& confusion,
                            const SensingNoise& noise, const map::MatchTolerance& tolerance,
-                           std::uint64_t seed)
+                           std::uint64_t seed, const std::vector<int>& start_rings)
     : index_(index), confusion_(confusion), noise_(noise), tolerance_(tolerance), rng_(seed) {
-  start_ = DrawStart(index, rng_);
+  start_ = DrawStart(index, rng_, start_rings);
   scale_error_ = noise_.wheel_scale_sigma_rel > 0 ? noise_.wheel_scale_sigma_rel * Gauss() : 0.0;
   next_edge_ = start_.edge;
   next_pos_ = -start_.offset_in;

@@ -43,8 +43,11 @@ struct RunStart {
   double offset_in = 0.0;
 };
 
-// Uniform along the total length of the map's edges, direction uniform.
-RunStart DrawStart(const map::MatchIndex& index, std::mt19937_64& rng);
+// Uniform along the total length of the edges of `rings` (ring indices of the map; every
+// ring when empty), direction uniform. With every ring the draws are those of a map with no
+// choice of rings, so a seed starts where it always did.
+RunStart DrawStart(const map::MatchIndex& index, std::mt19937_64& rng,
+                   const std::vector<int>& rings = {});
 // A 64-bit seed for run `run` of trial `trial` of a study seeded with `seed` (splitmix64 of
 // the three), so that every run has its own generator whatever the thread that runs it.
 std::uint64_t RunSeed(std::uint64_t seed, std::uint64_t trial, std::uint64_t run);
@@ -70,9 +73,11 @@ struct StreamEdge {
 class SensedStream {
  public:
   // `seed` determines the start and every error of the run. `tolerance` is the level-0
-  // tolerance, used only to label edges faithful or not.
+  // tolerance, used only to label edges faithful or not. The run starts beside an edge of
+  // `start_rings` (every ring when empty; DrawStart).
   SensedStream(const map::MatchIndex& index, const Confusion& confusion, const SensingNoise& noise,
-               const map::MatchTolerance& tolerance, std::uint64_t seed);
+               const map::MatchTolerance& tolerance, std::uint64_t seed,
+               const std::vector<int>& start_rings = {});
 
   // The i-th sensed edge (0-based), generated on demand; nullptr when the run reached the
   // end of an open ring before it. The edge stays where it is for the stream's lifetime:

@@ -145,6 +145,25 @@ void CheckStudyOptions(const map::Map& map, const StudyOptions& options) {
   options.config.Validate();
 }
 
+// The map's indices of the rings named in `ids` (every ring: none).
+std::vector<int> StartRingIndices(const map::Map& map, const std::vector<std::string>& ids) {
+  std::vector<int> rings;
+  for (const std::string& id : ids) {
+    int found = -1;
+    std::string known;
+    for (int r = 0; r < map.RingCount(); ++r) {
+      if (map.ring(r).id == id) found = r;
+      known += (r > 0 ? ", " : "") + map.ring(r).id;
+    }
+    if (found < 0) {
+      throw std::invalid_argument("start ring '" + id + "' is not a ring of map '" +
+                                  map.info().name + "' (its rings: " + known + ")");
+    }
+    rings.push_back(found);
+  }
+  return rings;
+}
+
 // What every worker reads: the map's index and the two ways of sensing it, through the
 // error model or error-free with exact matching (§6.4.1), and which of them are needed.
 struct StudySensing {
@@ -156,12 +175,15 @@ struct StudySensing {
   map::MatchTolerance exact;
   double frame_in = 0;
   bool need_modeled = false, need_clean = false;
+  std::vector<int> start_rings;  // empty: every ring
 };
 
-StudySensing PrepareSensing(const map::MatchIndex& index, const StudyOptions& options) {
+StudySensing PrepareSensing(const map::Map& map, const map::MatchIndex& index,
+                            const StudyOptions& options) {
   const StudyConfig& cfg = options.config;
   StudySensing s;
   s.index = &index;
+  s.start_rings = StartRingIndices(map, options.start_rings);
   s.cfg = &cfg;
   s.modeled = Resolve(options.error_model, index);
   s.clean = Resolve(ErrorModel::None(), index);
@@ -219,8 +241,10 @@ void RunIndex(std::size_t idx, const StudySensing& s, const StudyOptions& option
   const std::uint64_t trial = idx / options.runs, run = idx % options.runs;
   const std::uint64_t seed = RunSeed(options.seed, trial, run);
   std::optional<SensedStream> noisy, exact_stream;
-  if (s.need_modeled) noisy.emplace(*s.index, s.modeled, cfg.noise, cfg.base_tolerance, seed);
-  if (s.need_clean) exact_stream.emplace(*s.index, s.clean, s.quiet, s.exact, seed);
+  if (s.need_modeled) {
+    noisy.emplace(*s.index, s.modeled, cfg.noise, cfg.base_tolerance, seed, s.start_rings);
+  }
+  if (s.need_clean) exact_stream.emplace(*s.index, s.clean, s.quiet, s.exact, seed, s.start_rings);
   for (std::size_t m = 0; m < runners.size(); ++m) {
     MethodRunner& runner = runners[m];
     SensedStream& stream = runner.spec.error_free ? *exact_stream : *noisy;
@@ -254,7 +278,7 @@ DomainResult RunStudy(const map::Map& map, const StudyOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
 
   const map::MatchIndex index(map);
-  const StudySensing sensing = PrepareSensing(index, options);
+  const StudySensing sensing = PrepareSensing(map, index, options);
   const std::uint64_t total =
       static_cast<std::uint64_t>(options.trials) * static_cast<std::uint64_t>(options.runs);
   DomainResult out = EmptyResult(map, index, options, total);

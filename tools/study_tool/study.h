@@ -79,6 +79,9 @@ struct StudyOptions {
   std::vector<MethodSpec> methods;
   ErrorModel error_model;
   StudyConfig config;
+  // Ids of the rings a run may start on; empty: every ring of the map (the text's starts,
+  // §6.3). A robot switched on in one hallway is studied by naming that hallway's ring.
+  std::vector<std::string> start_rings;
   // Called from the calling thread about every 100 ms with (runs done, runs in total).
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };
@@ -93,8 +96,8 @@ struct DomainResult {
 };
 
 // Runs every method of `options` on `map`. Throws std::invalid_argument for a map with no
-// edges, T or N of zero, or a bad error model / config. The result depends only on the map,
-// the options and the seed — not on the number of threads.
+// edges, T or N of zero, a start ring the map does not have, or a bad error model / config. The
+// result depends only on the map, the options and the seed — not on the number of threads.
 DomainResult RunStudy(const map::Map& map, const StudyOptions& options);
 
 // Summary of one trial's runs.

@@ -144,6 +144,7 @@ nlohmann::json DomainJson(const DomainResult& d, const StudyOptions& o) {
   j["label"] = DomainLabel(d.map_name);
   j["map_edges"] = d.map_edges;
   j["mean_edge_metric_in"] = d.mean_edge_metric_in;
+  j["start_rings"] = o.start_rings;  // empty: every ring
   j["seconds"] = d.seconds;
   for (const ExperimentResult& e : d.experiments) {
     nlohmann::json x;
@@ -247,9 +248,12 @@ std::string DomainLabel(const std::string& map_name) {
 void PrintDomain(std::ostream& out, const DomainResult& d, const StudyOptions& o) {
   fmt::print(out,
              "\n=== {} ({}: {} edges, mean edge {:.2f} in) — {} trials x {} runs, seed {}, "
-             "{:.1f} s ===\n",
+             "starts on {}, {:.1f} s ===\n",
              DomainLabel(d.map_name), d.map_name, d.map_edges, d.mean_edge_metric_in, o.trials,
-             o.runs, o.seed, d.seconds);
+             o.runs, o.seed,
+             o.start_rings.empty() ? std::string("every ring")
+                                   : fmt::format("{}", fmt::join(o.start_rings, ", ")),
+             d.seconds);
   for (const ExperimentResult& e : d.experiments) {
     if (e.method.error_free) continue;
     const auto p = PaperLinesFor(d.map_name, e.method.Id());
@@ -342,6 +346,7 @@ StudyOptions LoadBaseOptions(const ToolOptions& opt, const std::string& root,
   base.runs = opt.runs;
   base.seed = opt.seed;
   base.threads = opt.threads;
+  base.start_rings = opt.start_rings;
   current_file = opt.error_model_path.empty() ? root + "/configs/error_model_paper.yaml"
                                               : opt.error_model_path;
   base.error_model = LoadErrorModel(current_file);

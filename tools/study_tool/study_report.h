@@ -42,6 +42,7 @@ struct ToolOptions {
   int threads = 0;               // 0: every core
   std::string error_model_path;  // "" : configs/error_model_paper.yaml
   std::string config_path;       // "" : configs/study.yaml
+  std::vector<std::string> start_rings;  // ring ids runs start on; empty: every ring
   std::string json_path;
   std::string png_dir;
   bool progress = true;  // drawn only when stderr is a terminal

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+
 #include "recovery/test_support.h"
 #include "stickrep/map_io.h"
 
@@ -115,6 +118,37 @@ TEST_F(StudyTest, ErrorRateOutsideZeroOneIsRejected) {
 
 TEST_F(StudyTest, EmptyMapIsRejected) {
   EXPECT_THROW(RunStudy(map::Map(), Options()), std::invalid_argument);
+}
+
+TEST_F(StudyTest, AStartRingTheMapDoesNotHaveIsRejected) {
+  StudyOptions o = Options();
+  o.start_rings = {"no_such_ring"};
+  try {
+    RunStudy(map_, o);
+    FAIL() << "a start ring the map does not have was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_ring"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(StudyTest, StartsOnOneRingChangeTheRunsButKeepThemCorrectWithoutError) {
+  const map::Map eb =
+      map::LoadMap(std::string(STICKREP_SOURCE_DIR) + "/maps/engineering_building_3f.yaml");
+  StudyOptions all = Options();
+  all.runs = 300;
+  all.methods = Methods({"deterministic"});
+  all.methods[0].error_free = true;
+  StudyOptions one = all;
+  one.start_rings = {eb.ring(0).id};
+  const DomainResult a = RunStudy(eb, all);
+  const DomainResult b = RunStudy(eb, one);
+  EXPECT_EQ(b.experiments[0].median().pct_correct, 100.0);
+  // The first ring is a corridor of rows of like offices: from it a unique pose takes more
+  // edges than from a start anywhere on the floor.
+  double edges_all = 0, edges_one = 0;
+  for (const TrialSummary& t : a.experiments[0].trials) edges_all += t.mean_edges;
+  for (const TrialSummary& t : b.experiments[0].trials) edges_one += t.mean_edges;
+  EXPECT_GT(edges_one, edges_all);
 }
 
 TEST(StudySummary, CountsTheLinesOfTheTables) {
