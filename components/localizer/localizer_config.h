@@ -28,6 +28,9 @@ struct ObservationSettings {
   double bayes_lost_threshold = 0.05;
   // A false door must fit in the wall that holds it (recovery::BayesSettings::false_door_fit).
   bool bayes_false_door_fit = false;
+  // The rest of a wall past a false door may run on over missed doors
+  // (recovery::BayesSettings::w2_over_missed_doors; replaces the study's). Optional: off.
+  bool bayes_w2_over_missed_doors = false;
   // Missed doors one sensed wall may span (recovery::BayesSettings::max_missed_doors;
   // replaces the study's): in a row of doors the pipeline misses several in a row.
   int bayes_max_missed_doors = 2;

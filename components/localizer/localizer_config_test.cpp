@@ -152,6 +152,25 @@ TEST(LocalizerSettingsTest, AMarkedMapGetsTheMarkedModelAndAnUnmarkedOneTheDefau
   EXPECT_EQ(config.lost_threshold, marked.bayes_lost_threshold);
 }
 
+TEST(LocalizerSettingsTest, TheRestOfAWallPastAFalseDoorRunsOnOnlyWhereTheSettingsSaySo) {
+  // The study's settings turn it on; a model whose keys do not is weighed without it.
+  std::string text = Shipped();
+  const std::string marked_last = "    bayes_max_missed_doors: 4\n";
+  const std::size_t at = text.find(marked_last);
+  ASSERT_NE(at, std::string::npos);
+  const bool shipped_on = text.find("    bayes_w2_over_missed_doors: true\n") != std::string::npos;
+  if (!shipped_on) text.insert(at + marked_last.size(), "    bayes_w2_over_missed_doors: true\n");
+  const LocalizerSettings settings = Load(text);
+  ASSERT_TRUE(settings.on_marked_maps.has_value());
+  EXPECT_TRUE(settings.on_marked_maps->bayes_w2_over_missed_doors);
+  EXPECT_FALSE(settings.observation.bayes_w2_over_missed_doors);
+  const map::Map marked = HallWithDoor("old_window"), plain = HallWithDoor("");
+  EXPECT_TRUE(
+      MakeLocalizerConfig(ForMap(settings, marked), marked).bayes.settings.w2_over_missed_doors);
+  EXPECT_FALSE(
+      MakeLocalizerConfig(ForMap(settings, plain), plain).bayes.settings.w2_over_missed_doors);
+}
+
 TEST(LocalizerSettingsTest, TheShippedFloorsGetTheModelTheirSurveySupports) {
   const std::string maps = DataDir() + "/maps/";
   const map::Map engineering = map::LoadMap(maps + "engineering_building_3f.yaml");

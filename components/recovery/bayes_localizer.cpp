@@ -140,8 +140,8 @@ double BayesLocalizer::Missed(int door) const {
   return model_.confusion.Missed(index_.code(door) - 1, index_.in_row(door));
 }
 
-double BayesLocalizer::FalseDoorAt(int wall) const {
-  return model_.confusion.FalseDoorIn(index_.metric(wall), index_.in_row(wall));
+double BayesLocalizer::FalseDoorAt(int wall, Confusion::Before before) const {
+  return model_.confusion.FalseDoorIn(index_.metric(wall), index_.in_row(wall), before);
 }
 
 double BayesLocalizer::WallDensity(double measured, double true_len) const {
@@ -369,8 +369,11 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
   const map::SymbolCode code1 = index_.code(n1);
   const double angle = AngleFactor(n1, dir, e);
   nn_[s1] += pn * eps * unit;  // an edge the model does not explain
+  // A door state at its far end was (almost always) reached by sensing the door.
+  const Confusion::Before before =
+      map::IsDoorCode(index_.code(g)) ? Confusion::Before::kDoorSeen : Confusion::Before::kUnknown;
   if (wall && code1 == map::kWallCode) {
-    NextWallFromEnd(n1, dir, pn, angle, e);
+    NextWallFromEnd(n1, dir, pn, angle, e, before);
   } else if (wall && map::IsDoorCode(code1)) {
     // A missed door seen as wall surface (at a corner), maybe with the wall after it.
     const double d = index_.metric(n1);
@@ -379,7 +382,8 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
     if (w >= 0 && index_.code(w) == map::kWallCode) {
       const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
       if (Coplanar(a_out)) {
-        nn_[State(w, dir)] += pn * angle * Missed(n1) * (1.0 - FalseDoorAt(w)) *
+        nn_[State(w, dir)] += pn * angle * Missed(n1) *
+                              (1.0 - FalseDoorAt(w, Confusion::Before::kDoorMissed)) *
                               WallDensity(e.metric_in, d + index_.metric(w));
       }
     }
@@ -391,8 +395,8 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
 }
 
 void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
-                                     const map::SensedEdge& e) {
-  const double pf = FalseDoorAt(n1);
+                                     const map::SensedEdge& e, Confusion::Before before) {
+  const double pf = FalseDoorAt(n1, before);
   const int s1 = State(n1, dir);
   const double len1 = index_.metric(n1);
   nn_[s1] += pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1);
@@ -408,16 +412,10 @@ void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
   }
   if (e.metric_in <= len1) {
     // W1 of a wall holding a false door: the ribbon is anywhere in the wall.
-    const double add = pn * angle * pf / len1 * RoomForFalseDoor(len1, e.metric_in);
-    if (add > ni1_[s1]) {
-      nc1_[s1] = e.metric_in;
-      nlb1_[s1] = 0;
-      nfd1_[s1] = 0;
-    }
-    ni1_[s1] += add;
+    AddFirstPart(s1, pn * angle * pf, e.metric_in);
   }
-  NextWallOverMissedDoors(n1, dir, pn, angle, e);
-  NextWallBeforeLeaf(n1, dir, pn, angle, e);
+  NextWallOverMissedDoors(n1, dir, pn, angle, e, before);
+  NextWallBeforeLeaf(n1, dir, pn, angle, e, before);
 }
 
 double BayesLocalizer::LeafDeficit(int k, int c) {
@@ -462,7 +460,7 @@ void BayesLocalizer::NextLeafFromEnd(int n1, int dir, double pn, double angle,
 }
 
 void BayesLocalizer::NextWallBeforeLeaf(int n1, int dir, double pn, double angle,
-                                        const map::SensedEdge& e) {
+                                        const map::SensedEdge& e, Confusion::Before before) {
   const Confusion& cf = model_.confusion;
   if (cf.leaf_before <= 0.0) return;
   const int n2 = index_.Step(n1, dir);
@@ -470,7 +468,7 @@ void BayesLocalizer::NextWallBeforeLeaf(int n1, int dir, double pn, double angle
   const double a_in = dir > 0 ? index_.angle_start(n2) : index_.angle_end(n2);
   if (!Coplanar(a_in)) return;
   const double w = LeafWallWeight(n2, -1, e.metric_in, index_.metric(n1));
-  nh_[State(n2, dir)] += pn * angle * (1.0 - FalseDoorAt(n1)) * cf.leaf_before * w;
+  nh_[State(n2, dir)] += pn * angle * (1.0 - FalseDoorAt(n1, before)) * cf.leaf_before * w;
 }
 
 void BayesLocalizer::NextFromLeafPhases(int s, const map::SensedEdge& e) {
@@ -506,7 +504,7 @@ void BayesLocalizer::NextFromLeafPhases(int s, const map::SensedEdge& e) {
   if (t_[s] > 0.0 && w >= 0 && index_.code(w) == map::kWallCode) {
     const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
     if (Coplanar(a_out)) {
-      nn_[State(w, dir)] += t_[s] * flat * (1.0 - FalseDoorAt(w)) *
+      nn_[State(w, dir)] += t_[s] * flat * (1.0 - FalseDoorAt(w, Confusion::Before::kDoorSeen)) *
                             WallDensity(e.metric_in, index_.metric(w) + deficit);
     }
   }
@@ -521,35 +519,73 @@ double BayesLocalizer::Mass(int s) const {
 }
 
 void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double angle,
-                                             const map::SensedEdge& e) {
+                                             const map::SensedEdge& e, Confusion::Before before) {
   // One sensed wall over missed doors on a flat wall: wall, door, wall, ...
-  double total = index_.metric(n1), p = (1.0 - FalseDoorAt(n1));
-  int cur = n1;
-  for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
-    const int d = index_.Step(cur, dir);
-    if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
-    const int w = index_.Step(d, dir);
-    if (w < 0 || index_.code(w) != map::kWallCode) break;
-    const double a_in = dir > 0 ? index_.angle_start(d) : index_.angle_end(d);
-    const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
-    if (!Coplanar(a_in) || !Coplanar(a_out)) break;
+  double total = index_.metric(n1), p = (1.0 - FalseDoorAt(n1, before));
+  int cur = n1, d = -1, w = -1;
+  for (int m = 0; m < model_.settings.max_missed_doors && FlatDoorThenWall(cur, dir, &d, &w); ++m) {
     const double before_w = total + index_.metric(d);
     const double len_w = index_.metric(w);
+    const double pf = FalseDoorAt(w, Confusion::Before::kDoorMissed);
     if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
       // ... ending in the first part of a wall that holds a false door.
-      const int sw = State(w, dir);
-      const double add = pn * angle * p * Missed(d) * FalseDoorAt(w) / len_w *
-                         RoomForFalseDoor(len_w, e.metric_in - before_w);
-      if (add > ni1_[sw]) {
-        nc1_[sw] = e.metric_in - before_w;
-        nlb1_[sw] = 0;
-        nfd1_[sw] = 0;
-      }
-      ni1_[sw] += add;
+      AddFirstPart(State(w, dir), pn * angle * p * Missed(d) * pf, e.metric_in - before_w);
     }
     total = before_w + len_w;
-    p *= Missed(d) * (1.0 - FalseDoorAt(w));
+    p *= Missed(d) * (1.0 - pf);
     nn_[State(w, dir)] += pn * angle * p * WallDensity(e.metric_in, total);
+    cur = w;
+  }
+}
+
+void BayesLocalizer::AddFirstPart(int sw, double mass, double w1_in) {
+  const double len = index_.metric(sw / 2);
+  const double add = mass / len * RoomForFalseDoor(len, w1_in);
+  if (add > ni1_[sw]) {
+    nc1_[sw] = w1_in;
+    nlb1_[sw] = 0;
+    nfd1_[sw] = 0;
+  }
+  ni1_[sw] += add;
+}
+
+bool BayesLocalizer::FlatDoorThenWall(int cur, int dir, int* door, int* wall) const {
+  const int d = index_.Step(cur, dir);
+  if (d < 0 || !map::IsDoorCode(index_.code(d))) return false;
+  const int w = index_.Step(d, dir);
+  if (w < 0 || index_.code(w) != map::kWallCode) return false;
+  const double a_in = dir > 0 ? index_.angle_start(d) : index_.angle_end(d);
+  const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
+  if (!Coplanar(a_in) || !Coplanar(a_out)) return false;
+  *door = d;
+  *wall = w;
+  return true;
+}
+
+void BayesLocalizer::NextSecondPartOverMissedDoors(int s, double p2, double angle,
+                                                   const map::SensedEdge& e) {
+  if (!model_.settings.w2_over_missed_doors || lb2_[s]) return;  // where W2 begins: unknown
+  const int dir = s % 2 == 0 ? +1 : -1;
+  const SensingNoise& nz = model_.noise;
+  const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
+  double total = std::max(0.0, index_.metric(s / 2) - c2_[s]);
+  double p = 1.0;
+  int cur = s / 2, d = -1, w = -1;
+  for (int m = 0; m < model_.settings.max_missed_doors && FlatDoorThenWall(cur, dir, &d, &w); ++m) {
+    const double before_w = total + index_.metric(d);
+    const double len_w = index_.metric(w);
+    const double pf = FalseDoorAt(w, Confusion::Before::kDoorMissed);
+    if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
+      AddFirstPart(State(w, dir), p2 * angle * p * Missed(d) * pf, e.metric_in - before_w);
+    }
+    total = before_w + len_w;
+    p *= Missed(d) * (1.0 - pf);
+    // As SecondPartDensity: the false door's two jambs and its width land on this wall too.
+    const double base = nz.WallSigmaIn(total);
+    const double sigma = std::max(
+        1.0, std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
+    const double z = (e.metric_in - total) / sigma;
+    nn_[State(w, dir)] += p2 * angle * p * std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
     cur = w;
   }
 }
@@ -580,6 +616,7 @@ void BayesLocalizer::NextFromSecondPart(int s, double p2, const map::SensedEdge&
   const double angle = std::isnan(e.angle_deg) || Coplanar(e.angle_deg) ? 1.0 : eps;
   const Confusion& cf = model_.confusion;
   const int wall = s / 2;
+  NextSecondPartOverMissedDoors(s, p2, angle, e);
   if (!cf.AnotherFalseDoor(fd2_[s]) || index_.in_row(wall)) {
     nn_[s] += p2 * angle * SecondPartDensity(s, e);
     return;

@@ -19,7 +19,9 @@
 //                      mis-sized rates and the mis-sized class distribution
 //   anything           with a small outlier probability, whatever the next edge is
 // From I1 a door is the false door (its class from the false-door distribution) -> I2; from
-// I2 a wall is the rest of the wall, W2 = L - W1 - door width.
+// I2 a wall is the rest of the wall, W2 = L - W1 - door width, or that rest, a missed door
+// and the wall after it as one merged wall (-> N, or -> I1 of that wall before another
+// false door).
 // A door read at least kLeafDeficitIn narrower than it is (a double door's one leaf)
 // leaves the rest of its width somewhere (ErrorModel::leaf_*), in four more phases:
 //   S1(d)  the first leaf of door d was sensed; the other leaf comes as a second door,
@@ -30,9 +32,10 @@
 // Adjacency angles, when sensed, must agree with the map node. Belief that reaches a
 // corridor's open end (map::IsOpenEnd) leaves the ring there and starts again from the
 // prior (the wall sensed last before it may run on out through it, as far as the next thing
-// seen). The first sensed edge is weighed by a prior uniform along the walls (a wall start is the part seen from the start point: any wall at least
-// that long). After each edge the belief is normalised; a pose is reported when the best
-// (edge, direction) holds at least `threshold` of the posterior.
+// seen). The first sensed edge is weighed by a prior uniform along the walls (a wall start is the
+// part seen from the start point: any wall at least that long). After each edge the belief is
+// normalised; a pose is reported when the best (edge, direction) holds at least `threshold` of the
+// posterior.
 
 #include <cstdint>
 #include <limits>
@@ -108,8 +111,9 @@ class BayesLocalizer {
   // The probability that map door `door` is missed (its class's rate).
   double Missed(int door) const;
   // The false-door rate of map wall `wall` (in a row of doors or not; by its length where
-  // the model rates false doors per inch: Confusion::FalseDoorIn).
-  double FalseDoorAt(int wall) const;
+  // the model rates false doors per inch; in a row, by the door before it where the model
+  // rates that: Confusion::FalseDoorIn).
+  double FalseDoorAt(int wall, Confusion::Before before = Confusion::Before::kUnknown) const;
   void First(const map::SensedEdge& e);
   // Weighs the belief after a sensed door by how its leaf's mark was read at each map edge
   // (Confusion::MarkLikelihood); nothing when the model has no marks.
@@ -123,12 +127,16 @@ class BayesLocalizer {
   // Next() for the mass of one state, phase by phase: from N(g), from I1(s), from I2(s).
   // NextFromEnd adds the mass that leaves the ring through an open end to `leaving`.
   void NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e, double* leaving);
-  void NextWallFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
-  void NextWallOverMissedDoors(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
+  // `before`: what the path passed just before wall n1 (a door seen, or unknown).
+  void NextWallFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e,
+                       Confusion::Before before);
+  void NextWallOverMissedDoors(int n1, int dir, double pn, double angle, const map::SensedEdge& e,
+                               Confusion::Before before);
   // The leaf phases: a door sensed as one leaf of door n1 from N(g), the wall before a
   // door n2 that held its first leaf, and the edges sensed in S1, S2, T and H.
   void NextLeafFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
-  void NextWallBeforeLeaf(int n1, int dir, double pn, double angle, const map::SensedEdge& e);
+  void NextWallBeforeLeaf(int n1, int dir, double pn, double angle, const map::SensedEdge& e,
+                          Confusion::Before before);
   void NextFromLeafPhases(int s, const map::SensedEdge& e);
   // The probability that map door `door` (class k) is read as class c, one leaf of it (0
   // when c is not kLeafDeficitIn narrower), and the rest of its width then.
@@ -141,6 +149,18 @@ class BayesLocalizer {
   // W2 after a false door: the wall ends there, or (the per-inch model) the rest of the wall
   // holds another false door and the sensed wall is its W1.
   void NextFromSecondPart(int s, double p2, const map::SensedEdge& e);
+  // W2 run on over missed doors on a flat wall: the rest of the wall of state s, a missed
+  // door, the wall after it (up to max_missed_doors), ending at that wall's end or in its
+  // first part before another false door (-> I1). Where the pipeline misses the doors of a
+  // row it reads the panels between their casings as doors: rest, missed door, first part,
+  // false door, and again.
+  void NextSecondPartOverMissedDoors(int s, double p2, double angle, const map::SensedEdge& e);
+  // Adds `mass` to I1 of state sw: the sensed wall was the first part (`w1_in` long) of its
+  // wall, before a false door (uniform over the wall, RoomForFalseDoor).
+  void AddFirstPart(int sw, double mass, double w1_in);
+  // The map door after edge `cur` in direction `dir` and the wall after it, both on a flat
+  // wall (coplanar nodes); false when there are none.
+  bool FlatDoorThenWall(int cur, int dir, int* door, int* wall) const;
   // A wall's first part W1 is taken uniform over the whole wall; the ribbon of a false door
   // after it must still lie inside the wall. Without that, a wall sensed whole followed by a
   // door leaves belief on "a false door inside the wall just sensed" until the next wall

@@ -492,6 +492,107 @@ TEST(BayesLocalizerRowTest, ADoorMissedInARowWeighsAsTheModelsRowsMissThem) {
   EXPECT_GT(after, 0.2);
 }
 
+// A row of double doors between 46 in panels, as on the Engineering Building's wings, and a
+// stretch whose doors are where the row's reading below puts them:
+//   0 W120 1 D36 2 W46 3 D36/36 4 W46 5 D30/30 6 W46 7 D36 8 W200 9 D40 10 W150 |
+//   11 W120 12 D36 13 W121 14 D40 15 W66 16 D40 17 W8 18 D36 19 W200 20 D40 21 W150 |
+// (nodes 0 and 11, marked |, are 90 deg corners; the rest 180 deg).
+map::Map CorridorWithARowOfDoubleDoors() {
+  using map::Edge;
+  return testing::ClosedCorridor({Edge::Wall(120),
+                                  Edge::Door(DoorClass::k36),
+                                  Edge::Wall(46),
+                                  Edge::Door(DoorClass::k36_36),
+                                  Edge::Wall(46),
+                                  Edge::Door(DoorClass::k30_30),
+                                  Edge::Wall(46),
+                                  Edge::Door(DoorClass::k36),
+                                  Edge::Wall(200),
+                                  Edge::Door(DoorClass::k40),
+                                  Edge::Wall(150),
+                                  Edge::Wall(120),
+                                  Edge::Door(DoorClass::k36),
+                                  Edge::Wall(121),
+                                  Edge::Door(DoorClass::k40),
+                                  Edge::Wall(66),
+                                  Edge::Door(DoorClass::k40),
+                                  Edge::Wall(8),
+                                  Edge::Door(DoorClass::k36),
+                                  Edge::Wall(200),
+                                  Edge::Door(DoorClass::k40),
+                                  Edge::Wall(150)},
+                                 {0, 11});
+}
+
+// The paper's rates, with the double doors of a row missed and its panels read as doors as
+// often as the live pipeline does (configs/error_model_rows.yaml).
+ErrorModel RowOfDoubleDoorsModel() {
+  ErrorModel em = ErrorModel::Paper();
+  em.in_row = ErrorModel::InRow{};
+  em.in_row->wall_false_door = 0.44;
+  em.in_row->by_class[DoorClass::k36_36] = {0.05, 0.25, 0.70};
+  em.in_row->by_class[DoorClass::k30_30] = {0.05, 0.35, 0.60};
+  em.false_door_classes = {{DoorClass::k40, 0.7}, {DoorClass::k36, 0.3}};
+  em.Validate();
+  return em;
+}
+
+// The belief in the truth (the 40 in door, edge 9, walked forward) over the belief in the
+// stretch of real doors (edge 20), after the row is read with its double doors missed and the
+// panels beyond them read as 40 in doors: the wall after the first false door is its panel's
+// last 3 in, the 30/30 missed and the next panel's first 3 in.
+double TruthOverTheRealDoors(const ErrorModel& em, bool w2_over_missed) {
+  const map::Map map = CorridorWithARowOfDoubleDoors();
+  const map::MatchIndex index(map);
+  BayesModel m;
+  m.confusion = Resolve(em, index);
+  m.noise = SensingNoise{};
+  m.settings.threshold = 0.99;
+  m.settings.w2_over_missed_doors = w2_over_missed;
+  BayesLocalizer b(index, m);
+  for (const map::SensedEdge& e :
+       {Wall(100, kNaN, true), Door(DoorClass::k36), Wall(121), Door(DoorClass::k40), Wall(66),
+        Door(DoorClass::k40), Wall(3), Door(DoorClass::k36), Wall(200), Door(DoorClass::k40)}) {
+    b.Add(e);
+  }
+  return b.PoseProbability(9, +1) / b.PoseProbability(20, +1);
+}
+
+TEST(BayesLocalizerRowTest, TheRestOfAPanelReadAsADoorRunsOnOverTheMissedDoorBeyondIt) {
+  const ErrorModel em = RowOfDoubleDoorsModel();
+  const double off = TruthOverTheRealDoors(em, false);
+  const double on = TruthOverTheRealDoors(em, true);
+  // Off, "wall:66" after the first false door is the outlier's and the real doors win; on, it
+  // is the panel's rest, the missed 30/30 and the next panel's first part, and the truth wins
+  // over a stretch that needs its 8 in wall read as 3 in.
+  EXPECT_LT(off, 0.1);
+  EXPECT_GT(on, 1.0);
+  EXPECT_GT(on / off, 100.0);
+}
+
+TEST(BayesLocalizerRowTest, APanelAfterAMissedDoorHoldsAFalseDoorAtItsOwnRate) {
+  ErrorModel flat = RowOfDoubleDoorsModel();
+  ErrorModel by_before = flat;
+  by_before.in_row->wall_false_door_after_missed = 0.70;
+  by_before.in_row->wall_false_door_after_seen = 0.06;
+  by_before.Validate();
+  const map::Map map = CorridorWithARowOfDoubleDoors();
+  const map::MatchIndex index(map);
+  const Confusion c = Resolve(by_before, index);
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(46, true, Confusion::Before::kDoorMissed), 0.70);
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(46, true, Confusion::Before::kDoorSeen), 0.06);
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(46, true), 0.44);
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(200, false, Confusion::Before::kDoorMissed), flat.wall_false_door);
+  // The truth's reading: the panel after the 36 in door seen held no false door (0.94 against
+  // 0.56), the two after the missed double doors held one each (0.70 against 0.44, twice):
+  // 4.2 on its main path. The real doors' 8 in wall, a wall of a row after a door seen, holds
+  // none (0.94 against 0.56 too), and the truth's other paths (the first panel read with a
+  // false door, say) weigh otherwise: the truth still gains more than twice.
+  const double gain = TruthOverTheRealDoors(by_before, true) / TruthOverTheRealDoors(flat, true);
+  EXPECT_GT(gain, 2.0);
+  EXPECT_LT(gain, (0.94 / 0.56) * (0.70 / 0.44) * (0.70 / 0.44));
+}
+
 // A corridor with a 36/36 double door (edge 1), and a single 36 in door (edge 6) where a
 // read of the double door's second leaf, with the first in the wall before it, fits exactly:
 //   0 W120 1 D36/36 2 W80 3 D40 4 W150 | 5 W156 6 D36 7 W80 8 D40 9 W200 |

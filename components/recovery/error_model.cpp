@@ -135,6 +135,16 @@ void ErrorModel::Validate() const {
   if (in_row) {
     if (in_row->wall_false_door)
       RequireProbability(*in_row->wall_false_door, "in_row.wall_false_door");
+    if (in_row->wall_false_door_after_missed.has_value() !=
+        in_row->wall_false_door_after_seen.has_value()) {
+      throw std::invalid_argument(
+          "in_row: wall_false_door_after_missed and wall_false_door_after_seen go together");
+    }
+    if (in_row->wall_false_door_after_missed) {
+      RequireProbability(*in_row->wall_false_door_after_missed,
+                         "in_row.wall_false_door_after_missed");
+      RequireProbability(*in_row->wall_false_door_after_seen, "in_row.wall_false_door_after_seen");
+    }
     ValidateClassRates(in_row->by_class, "in_row.by_class.");
   }
   RequireProbability(leaf_split, "leaf_split");
@@ -290,6 +300,16 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
     ErrorModel::InRow in_row;
     if (row.Has("wall_false_door"))
       in_row.wall_false_door = row.Get<double>("wall_false_door", 0.0, 1.0);
+    if (row.Has("wall_false_door_after_missed") != row.Has("wall_false_door_after_seen")) {
+      row.Fail(row.Has("wall_false_door_after_missed") ? "wall_false_door_after_missed"
+                                                       : "wall_false_door_after_seen",
+               "wall_false_door_after_missed and wall_false_door_after_seen go together");
+    }
+    if (row.Has("wall_false_door_after_missed")) {
+      in_row.wall_false_door_after_missed =
+          row.Get<double>("wall_false_door_after_missed", 0.0, 1.0);
+      in_row.wall_false_door_after_seen = row.Get<double>("wall_false_door_after_seen", 0.0, 1.0);
+    }
     if (row.Has("by_class")) in_row.by_class = ReadClassRates(row, "by_class");
     row.Finish();
     m.in_row = in_row;
@@ -351,7 +371,10 @@ static void MixUnsurveyed(const ErrorModel& model, const map::MatchIndex& index,
   }
 }
 
-double Confusion::FalseDoorIn(double len_in, bool row) const {
+double Confusion::FalseDoorIn(double len_in, bool row, Before before) const {
+  if (row && row_false_door_by_before && before != Before::kUnknown) {
+    return before == Before::kDoorMissed ? row_false_door_after_missed : row_false_door_after_seen;
+  }
   if (false_door_per_in <= 0.0) return row ? row_false_door : false_door;
   if (row && row_false_door_own) return row_false_door;
   return -std::expm1(-false_door_per_in * std::max(0.0, len_in));
@@ -369,6 +392,12 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   if (model.in_row && model.in_row->wall_false_door) {
     c.row_false_door = *model.in_row->wall_false_door;
     c.row_false_door_own = true;
+  }
+  if (model.in_row && model.in_row->wall_false_door_after_missed &&
+      model.in_row->wall_false_door_after_seen) {
+    c.row_false_door_after_missed = *model.in_row->wall_false_door_after_missed;
+    c.row_false_door_after_seen = *model.in_row->wall_false_door_after_seen;
+    c.row_false_door_by_before = true;
   }
   for (int k = 0; k < kDoorClasses; ++k) {
     const auto it = model.by_class.find(static_cast<DoorClass>(k));
@@ -576,6 +605,7 @@ static StudyConfig StudyConfigFromYaml(const StrictYaml& root) {
   c.bayes.outlier = bayes.Get<double>("outlier", 1e-12, 0.5);
   c.bayes.max_missed_doors = bayes.Get<int>("max_missed_doors", 0, 4);
   c.bayes.angle_tolerance_deg = bayes.Get<double>("angle_tolerance_deg", 0.0, 180.0, "deg");
+  c.bayes.w2_over_missed_doors = bayes.GetOr<bool>("w2_over_missed_doors", false);
   bayes.Finish();
   node.Finish();
   root.Finish();
@@ -663,6 +693,12 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
     out += "  in_row:\n";
     if (m.in_row->wall_false_door) {
       out += "    wall_false_door: " + number(*m.in_row->wall_false_door) + "\n";
+    }
+    if (m.in_row->wall_false_door_after_missed && m.in_row->wall_false_door_after_seen) {
+      out +=
+          "    wall_false_door_after_missed: " + number(*m.in_row->wall_false_door_after_missed) +
+          "\n    wall_false_door_after_seen: " + number(*m.in_row->wall_false_door_after_seen) +
+          "\n";
     }
     out += FormatClassRates(m.in_row->by_class, "    ");
   }

@@ -214,6 +214,47 @@ TEST(ErrorModelFile, ReadsTheMostFalseDoorsOfAWallAndWritesItBack) {
   }
 }
 
+TEST(ErrorModelFile, ReadsTheRowWallsRatesByTheDoorBeforeAndWritesThemBack) {
+  const ErrorModel m = ParseErrorModel(Model("  in_row:\n"
+                                             "    wall_false_door: 0.44\n"
+                                             "    wall_false_door_after_missed: 0.7\n"
+                                             "    wall_false_door_after_seen: 0.06\n"),
+                                       "m.yaml");
+  ASSERT_TRUE(m.in_row && m.in_row->wall_false_door_after_missed);
+  EXPECT_DOUBLE_EQ(*m.in_row->wall_false_door_after_missed, 0.7);
+  EXPECT_DOUBLE_EQ(*m.in_row->wall_false_door_after_seen, 0.06);
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  ASSERT_TRUE(back.in_row && back.in_row->wall_false_door_after_seen);
+  EXPECT_DOUBLE_EQ(*back.in_row->wall_false_door_after_missed, 0.7);
+  EXPECT_DOUBLE_EQ(*back.in_row->wall_false_door_after_seen, 0.06);
+  // Resolved: a wall of a row by the door before it where that is known; else, and on every
+  // other wall, as before.
+  const Confusion c = Resolve(m, map::MatchIndex(testing::CorridorMap()));
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(40, true, Confusion::Before::kDoorMissed), 0.7);
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(40, true, Confusion::Before::kDoorSeen), 0.06);
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(40, true, Confusion::Before::kUnknown), 0.44);
+  EXPECT_DOUBLE_EQ(c.FalseDoorIn(90, false, Confusion::Before::kDoorMissed), 0.1591);
+}
+
+TEST(ErrorModelFile, OneRowWallRateByTheDoorBeforeWithoutTheOtherIsRejected) {
+  try {
+    ParseErrorModel(Model("  in_row:\n"
+                          "    wall_false_door: 0.44\n"
+                          "    wall_false_door_after_missed: 0.7\n"),
+                    "m.yaml");
+    FAIL() << "accepted wall_false_door_after_missed alone";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_NE(e.key().find("wall_false_door_after_missed"), std::string::npos) << e.key();
+    EXPECT_NE(e.reason().find("go together"), std::string::npos) << e.reason();
+  }
+  EXPECT_THROW(ParseErrorModel(Model("  in_row:\n"
+                                     "    wall_false_door_after_missed: 1.7\n"
+                                     "    wall_false_door_after_seen: 0.1\n"),
+                               "m.yaml"),
+               InputError);
+}
+
 TEST(ErrorModelFile, BadRatesOfDoorsInARowAreRejectedWithTheirKey) {
   try {
     ParseErrorModel(Model("  in_row:\n    by_class:\n"
