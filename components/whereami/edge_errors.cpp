@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <utility>
 
 namespace stickrep::whereami {
 
@@ -19,6 +20,15 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
     for (int s = 0; s < map::kDoorClassCount; ++s) missized_to[t][s] += o.missized_to[t][s];
   }
   wall_error_in.insert(wall_error_in.end(), o.wall_error_in.begin(), o.wall_error_in.end());
+  wall_residuals.insert(wall_residuals.end(), o.wall_residuals.begin(), o.wall_residuals.end());
+  wall_ends += o.wall_ends;
+  wall_ends_off_node += o.wall_ends_off_node;
+  walls_at_corners += o.walls_at_corners;
+  for (int w = 0; w < 2; ++w) {
+    for (int b = 0; b < 2; ++b) {
+      for (int a = 0; a < 2; ++a) walls_by_missed[w][b][a].Add(o.walls_by_missed[w][b][a]);
+    }
+  }
   leaf_reads += o.leaf_reads;
   leaf_wall_before += o.leaf_wall_before;
   leaf_wall_after += o.leaf_wall_after;
@@ -142,6 +152,25 @@ void SetMarkReads(const EdgeErrorCounts& c, recovery::ErrorModel* m) {
   }
 }
 
+// The false-door rates of the short walls between doors after a missed and after a seen
+// door (ErrorModel::InRow), each shrunk towards the walls' in-row rate by
+// kClassPriorDoors walls' worth; none where no such wall was passed after either.
+void SetRowWallRatesByBefore(const EdgeErrorCounts& c, recovery::ErrorModel* m) {
+  if (!m->in_row || !m->in_row->wall_false_door) return;
+  EdgeErrorCounts::WallTally after[2];  // [before missed]
+  for (int b = 0; b < 2; ++b) {
+    for (int a = 0; a < 2; ++a) after[b].Add(c.walls_by_missed[1][b][a]);
+  }
+  if (after[0].walls == 0 || after[1].walls == 0) return;
+  const double prior = EdgeErrorCounts::kClassPriorDoors;
+  const double base = *m->in_row->wall_false_door;
+  const auto rate = [&](const EdgeErrorCounts::WallTally& t) {
+    return std::min(1.0, (t.false_doors + prior * base) / (t.walls + prior));
+  };
+  m->in_row->wall_false_door_after_seen = rate(after[0]);
+  m->in_row->wall_false_door_after_missed = rate(after[1]);
+}
+
 }  // namespace
 
 recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
@@ -174,6 +203,7 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
     }
   }
   SetClassRates(*this, &m);
+  SetRowWallRatesByBefore(*this, &m);
   if (leaf_reads > 0) {
     m.leaf_split = static_cast<double>(leaf_split) / leaf_reads;
     m.leaf_sliver = leaf_split > 0 ? static_cast<double>(leaf_sliver_in.size()) / leaf_split : 0.0;
@@ -330,6 +360,94 @@ void CountWall(const map::Ring& view_ring, int edge, const std::vector<map::Sens
   for (std::size_t k : on_it) AddFalseDoor(sensed[k], c);
 }
 
+// The true node nearest odometer reading `x` (node k lies between passages k and k + 1), and
+// how far it is; -1 when there is none.
+std::pair<int, double> NearestNode(const std::vector<Passage>& passed, double x) {
+  int best = -1;
+  double dist = 0.0;
+  for (std::size_t k = 0; k + 1 < passed.size(); ++k) {
+    const double at = 0.5 * (passed[k].last_in + passed[k + 1].first_in);
+    if (best < 0 || std::abs(at - x) < dist) {
+      best = static_cast<int>(k);
+      dist = std::abs(at - x);
+    }
+  }
+  return {best, dist};
+}
+
+// Sensed walls whose ends lie near true nodes, against the true edges between the nodes
+// (EdgeErrorCounts::wall_residuals). Only walls inside [lo, hi], the first edge left out.
+void CountWallResiduals(const map::Ring& view_ring, const std::vector<map::SensedEdge>& sensed,
+                        const std::vector<localizer::EdgeAssembler::Span>& spans,
+                        const std::vector<Passage>& passed,
+                        const std::map<int, std::vector<std::size_t>>& doors_on, double lo,
+                        double hi, EdgeErrorCounts* c) {
+  using End = EdgeErrorCounts::WallEnd;
+  // What bounds the wall at node k on the side of passage `outside`.
+  const auto end_kind = [&](int outside) {
+    const map::Edge& e = view_ring.edges[passed[outside].edge];
+    if (!e.door_class) return End::kOther;
+    const auto it = doors_on.find(outside);
+    if (it == doors_on.end()) return End::kOther;
+    return sensed[it->second.front()].code == map::DoorCode(*e.door_class) ? End::kDoorRight
+                                                                           : End::kDoorMissized;
+  };
+  for (std::size_t i = 1; i < sensed.size() && i < spans.size(); ++i) {
+    if (sensed[i].code != map::kWallCode || sensed[i].metric_is_lower_bound) continue;
+    // At a corner the next wall is seen before the turn, so its span is not placed along
+    // the odometer beside the one before: walls that begin or end at a sensed node are
+    // counted apart, not matched.
+    const bool corner = !std::isnan(sensed[i].angle_deg) ||
+                        (i + 1 < sensed.size() && !std::isnan(sensed[i + 1].angle_deg));
+    if (corner || i + 1 >= sensed.size()) {
+      c->walls_at_corners += corner;
+      continue;
+    }
+    const double a = std::min(spans[i].from_in, spans[i].to_in);
+    const double b = std::max(spans[i].from_in, spans[i].to_in);
+    if (a < lo || b > hi) continue;
+    const auto [na, da] = NearestNode(passed, a);
+    const auto [nb, db] = NearestNode(passed, b);
+    c->wall_ends += 2;
+    c->wall_ends_off_node +=
+        (da > EdgeErrorCounts::kNodeNearIn) + (db > EdgeErrorCounts::kNodeNearIn);
+    if (na < 0 || nb < 0 || na == nb || da > EdgeErrorCounts::kNodeNearIn ||
+        db > EdgeErrorCounts::kNodeNearIn) {
+      continue;
+    }
+    // Passages first..last lie between the two nodes; outside them, one on each side.
+    const int first = std::min(na, nb) + 1, last = std::max(na, nb);
+    EdgeErrorCounts::WallResidual r;
+    for (int q = first; q <= last; ++q) {
+      const map::Edge& e = view_ring.edges[passed[q].edge];
+      r.true_in += e.metric_in;
+      r.over_missed = r.over_missed || e.door_class.has_value();
+    }
+    r.error_in = sensed[i].metric_in - r.true_in;
+    r.start = end_kind(first - 1);
+    r.end = end_kind(last + 1);
+    c->wall_residuals.push_back(r);
+  }
+}
+
+// A true wall between two true doors (passages p - 1 and p + 1): whether a false door was
+// read on it, by which of the two doors went unseen (EdgeErrorCounts::walls_by_missed).
+void CountWallByNeighbours(const map::Ring& view_ring, const std::vector<int>& passed_edges,
+                           const std::map<int, std::vector<std::size_t>>& doors_on, std::size_t p,
+                           bool false_door, EdgeErrorCounts* c) {
+  if (p == 0 || p + 1 >= passed_edges.size()) return;
+  const map::Edge& before = view_ring.edges[passed_edges[p - 1]];
+  const map::Edge& after = view_ring.edges[passed_edges[p + 1]];
+  if (!before.door_class || !after.door_class) return;
+  const bool before_missed = doors_on.count(static_cast<int>(p - 1)) == 0;
+  const bool after_missed = doors_on.count(static_cast<int>(p + 1)) == 0;
+  const bool short_wall = view_ring.edges[passed_edges[p]].metric_in < map::kRowWallIn;
+  EdgeErrorCounts::WallTally& t = c->walls_by_missed[short_wall][before_missed][after_missed];
+  ++t.walls;
+  t.wall_in += view_ring.edges[passed_edges[p]].metric_in;
+  t.false_doors += false_door;
+}
+
 }  // namespace
 
 EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
@@ -403,9 +521,11 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
     } else if (edge.IsWall()) {
       static const std::vector<std::size_t> kNone;
       CountWall(view_ring, passed[p].edge, sensed, it == doors_on.end() ? kNone : it->second, &c);
+      CountWallByNeighbours(view_ring, passed_edges, doors_on, p, it != doors_on.end(), &c);
     }
   }
   CountWallErrors(view_ring, sensed, passed, matched, &c);
+  CountWallResiduals(view_ring, sensed, spans, passed, doors_on, lo, hi, &c);
   return c;
 }
 

@@ -7,6 +7,7 @@
 // configs/error_model_paper.yaml, for the Bayes matcher.
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -33,6 +34,24 @@ struct EdgeErrorCounts {
   std::array<long, map::kDoorClassCount> false_class{};
   // Sensed minus true length of walls between two doors that were both sensed correctly.
   std::vector<double> wall_error_in;
+  // Every sensed wall (but a run's first edge, and walls that begin or end at a sensed
+  // corner: `walls_at_corners`) whose two ends lie within kNodeNearIn of a true node: sensed
+  // minus true length (the true edges between the two nodes), by what bounds it. Each end
+  // is a jamb of a door read with its class, of a door read mis-sized, or another node (a
+  // step, a join, a door missed); `over_missed` when a true door between the ends went
+  // unseen. The Bayes matcher weighs a wall by a normal error about its length
+  // (SensingNoise::WallSigmaIn): these show whether the live walls are read so.
+  enum class WallEnd : std::uint8_t { kDoorRight, kDoorMissized, kOther };
+  struct WallResidual {
+    double error_in = 0.0;
+    double true_in = 0.0;
+    WallEnd start = WallEnd::kOther, end = WallEnd::kOther;
+    bool over_missed = false;
+  };
+  static constexpr double kNodeNearIn = 8.0;
+  std::vector<WallResidual> wall_residuals;
+  // Sensed wall ends (as above) and those farther than kNodeNearIn from every true node.
+  long wall_ends = 0, wall_ends_off_node = 0, walls_at_corners = 0;
   // Mis-sized doors read at least recovery::kLeafDeficitIn narrower than they are (a double
   // door read as one leaf), and where the rest of the width went: the other leaf read as a
   // second door (right after, or after a sliver of wall: the slivers' sensed lengths), or
@@ -62,6 +81,12 @@ struct EdgeErrorCounts {
     }
   };
   std::array<WallTally, 2> walls_by_row{};
+  // The true walls between two true doors ([0]: at least map::kRowWallIn long, [1]: shorter)
+  // by whether the door before them (in the direction of travel) and the door after them
+  // were missed ([before missed][after missed]), with the walls that held a false door (a
+  // wall counts once, however many it held): the in-row rates after a missed and after a
+  // seen door (ErrorModel::InRow::wall_false_door_after_missed, _after_seen).
+  std::array<std::array<std::array<WallTally, 2>, 2>, 2> walls_by_missed{};
   // The true walls and the false doors sensed on them by the wall's length (its view edge's
   // metric): bin b holds lengths in [kWallLengthBinsIn[b], kWallLengthBinsIn[b + 1]), the
   // last bin every longer wall. A false door is read on a stretch of wall, so a rate per

@@ -199,5 +199,59 @@ TEST(EdgeErrorsTest, RunsWithoutAnyDoorGiveNoMarkRows) {
   EXPECT_FALSE(EdgeErrorCounts{}.ToModel("empty").HasMarks());
 }
 
+// A row: W100, D36, a 46 in panel, a 36/36, a panel, D36, a panel, D36, W100; read with the
+// double door missed and the panel beyond it read as a 40 in door.
+TEST(EdgeErrorsTest, CountsTheRowWallsFalseDoorsByTheDoorsBesideThemAndTheWallsLengthErrors) {
+  map::Ring ring;
+  ring.id = "row";
+  using map::DoorClass;
+  using map::Edge;
+  ring.edges = {
+      Edge::Wall(100), Edge::Door(DoorClass::k36), Edge::Wall(46), Edge::Door(DoorClass::k36_36),
+      Edge::Wall(46),  Edge::Door(DoorClass::k36), Edge::Wall(46), Edge::Door(DoorClass::k36),
+      Edge::Wall(100)};
+  const std::vector<TruthSample> truth = TruthEveryInch(ring);
+  const map::SymbolCode door36 = map::DoorCode(DoorClass::k36);
+  const map::SymbolCode door40 = map::DoorCode(DoorClass::k40);
+  const std::vector<map::SensedEdge> sensed = {
+      Sensed(map::kWallCode, 100, DoorMark::kUnknown), Sensed(door36, 36, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 121, DoorMark::kUnknown), Sensed(door40, 40, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 3, DoorMark::kUnknown),   Sensed(door36, 36, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 46, DoorMark::kUnknown),  Sensed(door36, 36, DoorMark::kUnknown),
+      Sensed(map::kWallCode, 100, DoorMark::kUnknown)};
+  const std::vector<localizer::EdgeAssembler::Span> spans = {{0, 100},   {100, 136}, {136, 257},
+                                                             {257, 297}, {297, 300}, {300, 336},
+                                                             {336, 382}, {382, 418}, {418, 518}};
+  const EdgeErrorCounts c = CompareWithTruth(ring, sensed, spans, truth, 0.0, 518.0);
+  EXPECT_EQ(c.missed, 1);
+  EXPECT_EQ(c.false_doors, 1);
+  // [short][before missed][after missed]: the panel before the missed door held none, the
+  // one after it held the false door, the one between two doors seen none.
+  const auto& rows = c.walls_by_missed[1];
+  EXPECT_EQ(rows[0][1].walls, 1);
+  EXPECT_EQ(rows[0][1].false_doors, 0);
+  EXPECT_EQ(rows[1][0].walls, 1);
+  EXPECT_EQ(rows[1][0].false_doors, 1);
+  EXPECT_EQ(rows[0][0].walls, 1);
+  EXPECT_EQ(rows[0][0].false_doors, 0);
+  EXPECT_EQ(c.walls_by_missed[0][0][0].walls, 0);
+  const recovery::ErrorModel m = c.ToModel("test");
+  ASSERT_TRUE(m.in_row && m.in_row->wall_false_door_after_missed);
+  EXPECT_GT(*m.in_row->wall_false_door_after_missed, *m.in_row->wall_false_door);
+  EXPECT_LT(*m.in_row->wall_false_door_after_seen, *m.in_row->wall_false_door);
+  // The walls' lengths: the wall over the missed door is 3 in longer than the panel and the
+  // door (its end is 3 in into the next panel, within the 8 in of a node); the panel between
+  // two doors seen is read exactly. The 3 in after the false door has both ends by one node,
+  // the first and the last wall are not counted.
+  ASSERT_EQ(c.wall_residuals.size(), 2u);
+  EXPECT_TRUE(c.wall_residuals[0].over_missed);
+  EXPECT_NEAR(c.wall_residuals[0].error_in, 3.0, 1e-9);
+  EXPECT_NEAR(c.wall_residuals[0].true_in, 118.0, 1e-9);
+  EXPECT_FALSE(c.wall_residuals[1].over_missed);
+  EXPECT_EQ(c.wall_residuals[1].start, EdgeErrorCounts::WallEnd::kDoorRight);
+  EXPECT_EQ(c.wall_residuals[1].end, EdgeErrorCounts::WallEnd::kDoorRight);
+  EXPECT_NEAR(c.wall_residuals[1].error_in, 0.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace stickrep::whereami

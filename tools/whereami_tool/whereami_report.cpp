@@ -18,6 +18,7 @@
 #include "stickrep/hallway_view.h"
 #include "study_tool/study_report.h"
 #include "whereami_tool/integrity_report.h"
+#include "whereami_tool/wall_residuals.h"
 
 namespace stickrep::whereami {
 
@@ -202,7 +203,7 @@ void PrintMarkReads(const EdgeErrorCounts& total, std::ostream& out) {
 
 // The measured rates beside Table 6.10, the walls' length error and the doors by width.
 void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts& total,
-                        std::ostream& out) {
+                        const recovery::SensingNoise& noise, std::ostream& out) {
   out << fmt::format("\nper assembled edge (%)             paper Table 6.10   ours\n");
   out << fmt::format("  true doors sensed with their class   {:>8.2f} {:>8.2f}\n", 83.67,
                      100.0 * model.door_correct);
@@ -224,6 +225,7 @@ void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts
                        total.wall_error_in.size(), mean,
                        std::sqrt(sq / std::max<std::size_t>(1, total.wall_error_in.size() - 1)));
   }
+  PrintWallResiduals(total, noise, out);
   out << "  by door width (in): passed, with their class, mis-sized, missed\n";
   for (const auto& [width, t] : total.by_width) {
     out << fmt::format("    {:>3}  {:>5} {:>5} {:>5} {:>5}  ({:.0f} % missed)\n", width, t.passed,
@@ -266,7 +268,10 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
                   options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
                   total.true_doors, total.true_walls);
   const recovery::ErrorModel model = total.ToModel(source);
-  PrintMeasuredRates(model, total, out);
+  const recovery::SensingNoise noise =
+      localizer::MakeLocalizerConfig(localizer::ForMap(setup.localizer, *setup.map), *setup.map)
+          .bayes.noise;
+  PrintMeasuredRates(model, total, noise, out);
   if (!options.error_model_out.empty()) {
     if (failed > 0 || total.true_doors == 0) {
       out << fmt::format("no error model written: {} runs failed, {} true doors passed\n", failed,
