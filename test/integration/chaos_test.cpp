@@ -246,7 +246,10 @@ TEST_F(ChaosTest, RandomKillsForTwoMinutesTheMissionEndsLocalizedAndTheBaseStops
     NoteRestarts(kills, launch.pid());
     return holding && pose_ && pose_->status() == msgs::LOCALIZATION_LOCALIZED;
   };
-  ASSERT_TRUE(SpinUntil(settled, 180.0)) << Outputs();
+  // A localizer restarted late in the chaos recovers from scratch at real time: on the marked
+  // map's bar the in-process runs of seeds 2301-3000 took 71 s to a pose at the median, 157 s
+  // at the 95th percentile and 337 s at most (docs/whereami.md, "The panels of a row").
+  ASSERT_TRUE(SpinUntil(settled, 360.0)) << Outputs();
   SpinUntil([] { return false; }, 2.0);  // the base's last truth lines and samples
   ASSERT_TRUE(truth_.has_value());
   const auto& best = pose_->best();
