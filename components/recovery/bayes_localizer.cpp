@@ -521,19 +521,33 @@ double BayesLocalizer::Mass(int s) const {
 void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double angle,
                                              const map::SensedEdge& e, Confusion::Before before) {
   // One sensed wall over missed doors on a flat wall: wall, door, wall, ...
-  double total = index_.metric(n1), p = (1.0 - FalseDoorAt(n1, before));
-  int cur = n1, d = -1, w = -1;
+  RunOnOverMissedDoors(n1, dir, index_.metric(n1), pn * angle, 1.0 - FalseDoorAt(n1, before), 0.0,
+                       e);
+}
+
+void BayesLocalizer::RunOnOverMissedDoors(int from, int dir, double total, double mass, double p,
+                                          double extra_var, const map::SensedEdge& e) {
+  int cur = from, d = -1, w = -1;
   for (int m = 0; m < model_.settings.max_missed_doors && FlatDoorThenWall(cur, dir, &d, &w); ++m) {
     const double before_w = total + index_.metric(d);
     const double len_w = index_.metric(w);
     const double pf = FalseDoorAt(w, Confusion::Before::kDoorMissed);
     if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
       // ... ending in the first part of a wall that holds a false door.
-      AddFirstPart(State(w, dir), pn * angle * p * Missed(d) * pf, e.metric_in - before_w);
+      AddFirstPart(State(w, dir), mass * p * Missed(d) * pf, e.metric_in - before_w);
     }
     total = before_w + len_w;
     p *= Missed(d) * (1.0 - pf);
-    nn_[State(w, dir)] += pn * angle * p * WallDensity(e.metric_in, total);
+    double density = 0.0;
+    if (extra_var > 0.0) {
+      const double base = model_.noise.WallSigmaIn(total);
+      const double sigma = std::max(1.0, std::sqrt(base * base + extra_var));
+      const double z = (e.metric_in - total) / sigma;
+      density = std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
+    } else {
+      density = WallDensity(e.metric_in, total);
+    }
+    nn_[State(w, dir)] += mass * p * density;
     cur = w;
   }
 }
@@ -568,26 +582,10 @@ void BayesLocalizer::NextSecondPartOverMissedDoors(int s, double p2, double angl
   const int dir = s % 2 == 0 ? +1 : -1;
   const SensingNoise& nz = model_.noise;
   const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
-  double total = std::max(0.0, index_.metric(s / 2) - c2_[s]);
-  double p = 1.0;
-  int cur = s / 2, d = -1, w = -1;
-  for (int m = 0; m < model_.settings.max_missed_doors && FlatDoorThenWall(cur, dir, &d, &w); ++m) {
-    const double before_w = total + index_.metric(d);
-    const double len_w = index_.metric(w);
-    const double pf = FalseDoorAt(w, Confusion::Before::kDoorMissed);
-    if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
-      AddFirstPart(State(w, dir), p2 * angle * p * Missed(d) * pf, e.metric_in - before_w);
-    }
-    total = before_w + len_w;
-    p *= Missed(d) * (1.0 - pf);
-    // As SecondPartDensity: the false door's two jambs and its width land on this wall too.
-    const double base = nz.WallSigmaIn(total);
-    const double sigma = std::max(
-        1.0, std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
-    const double z = (e.metric_in - total) / sigma;
-    nn_[State(w, dir)] += p2 * angle * p * std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
-    cur = w;
-  }
+  // As SecondPartDensity: the false door's two jambs and its width land on the merged wall.
+  const double extra_var = 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig;
+  RunOnOverMissedDoors(s / 2, dir, std::max(0.0, index_.metric(s / 2) - c2_[s]), p2 * angle, 1.0,
+                       extra_var, e);
 }
 
 void BayesLocalizer::NextFromFirstPart(int s, double p1, const map::SensedEdge& e) {

@@ -155,6 +155,12 @@ class BayesLocalizer {
   // row it reads the panels between their casings as doors: rest, missed door, first part,
   // false door, and again.
   void NextSecondPartOverMissedDoors(int s, double p2, double angle, const map::SensedEdge& e);
+  // The walk both share: from edge `from` (`total` inches of it sensed so far, its share `p`
+  // of `mass` so far) over a missed door and the wall after it, up to max_missed_doors, the
+  // sensed wall ending at that wall's end (normal about the length, with `extra_var` more
+  // variance than WallDensity's) or in its first part before a false door (-> I1).
+  void RunOnOverMissedDoors(int from, int dir, double total, double mass, double p,
+                            double extra_var, const map::SensedEdge& e);
   // Adds `mass` to I1 of state sw: the sensed wall was the first part (`w1_in` long) of its
   // wall, before a false door (uniform over the wall, RoomForFalseDoor).
   void AddFirstPart(int sw, double mass, double w1_in);
