@@ -317,11 +317,20 @@ TEST_F(SecuredStackTest, SecuredStackRecoversACorrectPose) {
   }
   std::printf("[security] observer authenticated every process after %.1f s (%d rejoins)\n",
               WallNowS() - t0, rejoins);
-  ASSERT_TRUE(WaitFor([] { return StackSaid("CORRECT") && g_stack->mission_state == "LOCALIZED"; },
-                      300.0))
+  // The bound is a recovery's tail, not its median: a handshake the launcher heals restarts a
+  // process mid-recovery (a restarted locomotion or localizer starts the recovery again), and
+  // in process a recovery from scratch took 71 s at the median and up to 337 s on seeds
+  // 2301-3000 (docs/whereami.md), slower still on a loaded machine.
+  ASSERT_TRUE(
+      WaitFor([] { return StackSaid("CORRECT") && g_stack->mission_state == "LOCALIZED"; }, 600.0))
       << Output();
   std::printf("[security] secured stack: pose recovered and judged in %.1f s of wall time\n",
               WallNowS() - t0);
+  // The launcher's own lines (restarts, healed handshakes) go in the log of a passing run too.
+  std::istringstream launch_output(g_stack->launch->output());
+  for (std::string line; std::getline(launch_output, line);) {
+    if (line.rfind("launch:", 0) == 0) std::printf("[security] %s\n", line.c_str());
+  }
   EXPECT_FALSE(StackSaid("INCORRECT")) << Output();
   EXPECT_EQ(g_stack->collisions, 0u);
   // The base comes to rest once the mission holds.
