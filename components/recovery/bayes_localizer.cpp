@@ -150,6 +150,18 @@ double BayesLocalizer::WallDensity(double measured, double true_len) const {
   return std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
 }
 
+double BayesLocalizer::WallDensityOverMissed(double measured, double true_len, int missed,
+                                             double extra_var) const {
+  const Confusion& c = model_.confusion;
+  const double mean = true_len + missed * c.missed_wall_bias_in;
+  const double var = extra_var + missed * c.missed_wall_var_in2;
+  if (var <= 0.0 && mean == true_len) return WallDensity(measured, true_len);
+  const double base = model_.noise.WallSigmaIn(std::max(true_len, 0.0));
+  const double sigma = std::max(1.0, std::sqrt(base * base + var));
+  const double z = (measured - mean) / sigma;
+  return std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
+}
+
 double BayesLocalizer::AngleFactor(int g, int dir, const map::SensedEdge& e) const {
   if (std::isnan(e.angle_deg)) return 1.0;
   const double a = dir > 0 ? index_.angle_start(g) : index_.angle_end(g);
@@ -538,16 +550,7 @@ void BayesLocalizer::RunOnOverMissedDoors(int from, int dir, double total, doubl
     }
     total = before_w + len_w;
     p *= Missed(d) * (1.0 - pf);
-    double density = 0.0;
-    if (extra_var > 0.0) {
-      const double base = model_.noise.WallSigmaIn(total);
-      const double sigma = std::max(1.0, std::sqrt(base * base + extra_var));
-      const double z = (e.metric_in - total) / sigma;
-      density = std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
-    } else {
-      density = WallDensity(e.metric_in, total);
-    }
-    nn_[State(w, dir)] += mass * p * density;
+    nn_[State(w, dir)] += mass * p * WallDensityOverMissed(e.metric_in, total, m + 1, extra_var);
     cur = w;
   }
 }

@@ -108,6 +108,11 @@ class BayesLocalizer {
   static int State(int g, int dir) { return 2 * g + (dir > 0 ? 0 : 1); }
   double AngleFactor(int g, int dir, const map::SensedEdge& e) const;
   double WallDensity(double measured, double true_len) const;
+  // A sensed wall over `missed` missed doors whose true edges add up to `true_len`:
+  // WallDensity, shifted and widened by the model's wall_over_missed_door per missed door
+  // and widened by `extra_var` (in^2) more.
+  double WallDensityOverMissed(double measured, double true_len, int missed,
+                               double extra_var) const;
   // The probability that map door `door` is missed (its class's rate).
   double Missed(int door) const;
   // The false-door rate of map wall `wall` (in a row of doors or not; by its length where

@@ -359,6 +359,49 @@ TEST_F(BayesLocalizerTest, ExplainsAMissedDoorAsOneLongWall) {
   EXPECT_GT(b.best().probability, 0.9);
 }
 
+// A stretch with a 36 in door between two walls and one with a single wall as long as the
+// two and the door (210 in), each between a 36 in door and a 40 in door:
+//   0 W120 1 D36 2 W90 3 D36 4 W75 5 D40 6 W150 | 7 W120 8 D36 9 W210 10 D40 11 W150 |
+// (nodes 0 and 7, marked |, are 90 deg corners; the rest 180 deg).
+map::Map CorridorWithAWallAsLongAsADoorBetweenTwo() {
+  using map::Edge;
+  return testing::ClosedCorridor(
+      {Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(90), Edge::Door(DoorClass::k36),
+       Edge::Wall(75), Edge::Door(DoorClass::k40), Edge::Wall(150), Edge::Wall(120),
+       Edge::Door(DoorClass::k36), Edge::Wall(210), Edge::Door(DoorClass::k40), Edge::Wall(150)},
+      {0, 7});
+}
+
+// The belief in the stretch with the missed door (edge 5) over the one with the long wall
+// (edge 10) after a 36 in door, a 210 in wall and a 40 in door: the first has the door missed
+// and its wall read 9 in long (201 in true), as the live pipeline reads such walls.
+double MissedDoorOverLongWall(const ErrorModel& em) {
+  const map::Map map = CorridorWithAWallAsLongAsADoorBetweenTwo();
+  const map::MatchIndex index(map);
+  BayesLocalizer b = MakeLocalizer(index, em, 0.99, 0);
+  for (const map::SensedEdge& e :
+       {Wall(100, kNaN, true), Door(DoorClass::k36), Wall(210), Door(DoorClass::k40)}) {
+    b.Add(e);
+  }
+  return b.PoseProbability(5, +1) / b.PoseProbability(10, +1);
+}
+
+TEST(BayesLocalizerWallTest, AWallOverAMissedDoorIsWeighedAsTheModelReadsSuchWalls) {
+  ErrorModel em = ErrorModel::Paper();
+  const double without = MissedDoorOverLongWall(em);
+  em.wall_over_missed_door = ErrorModel::WallOverMissedDoor{3.5, 3.1};
+  em.Validate();
+  const double with = MissedDoorOverLongWall(em);
+  // Without the key the 9 in are 3 sigma off the 201 in: the missed door's 0.06 times
+  // exp(-4.4); with it 1.3 sigma off a wider normal: 0.06 times 0.45 x 3.05 / 4.35.
+  EXPECT_LT(without, 0.005);
+  EXPECT_GT(with / without, 10.0);
+  EXPECT_LT(with, 0.06);
+  // The shift alone, without the spread, moves the wall's mean to 204.5 in.
+  em.wall_over_missed_door = ErrorModel::WallOverMissedDoor{3.5, 0.0};
+  EXPECT_GT(MissedDoorOverLongWall(em), without);
+}
+
 TEST_F(BayesLocalizerTest, ExplainsAMissizedDoor) {
   BayesLocalizer b = Make(ErrorModel::Paper());
   b.Add(Wall(60, kNaN, true));        // inside the 90 in wall

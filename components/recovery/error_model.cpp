@@ -15,6 +15,8 @@ namespace {
 using map::DoorClass;
 
 constexpr double kSumTolerance = 1e-3;
+// The largest per-missed-door bias and spread of a wall read over a missed door (inches).
+constexpr double kMaxMissedWallBiasIn = 24.0;
 // The floor of a mark's read share: a read the measurement never saw is rare, not impossible.
 constexpr double kMinMarkShare = 0.005;
 
@@ -146,6 +148,17 @@ void ErrorModel::Validate() const {
       RequireProbability(*in_row->wall_false_door_after_seen, "in_row.wall_false_door_after_seen");
     }
     ValidateClassRates(in_row->by_class, "in_row.by_class.");
+  }
+  if (wall_over_missed_door) {
+    if (!(std::abs(wall_over_missed_door->bias_in) <= kMaxMissedWallBiasIn)) {
+      throw std::invalid_argument("wall_over_missed_door.bias_in is " +
+                                  Num(wall_over_missed_door->bias_in) + ", not in [-24, 24]");
+    }
+    if (!(wall_over_missed_door->sigma_in >= 0.0 &&
+          wall_over_missed_door->sigma_in <= kMaxMissedWallBiasIn)) {
+      throw std::invalid_argument("wall_over_missed_door.sigma_in is " +
+                                  Num(wall_over_missed_door->sigma_in) + ", not in [0, 24]");
+    }
   }
   RequireProbability(leaf_split, "leaf_split");
   RequireProbability(leaf_sliver, "leaf_sliver");
@@ -314,6 +327,15 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
     row.Finish();
     m.in_row = in_row;
   }
+  if (node.Has("wall_over_missed_door")) {
+    const StrictYaml w = node.Child("wall_over_missed_door");
+    if (!w.IsMap()) node.Fail("wall_over_missed_door", "expected {bias_in: X, sigma_in: Y}");
+    ErrorModel::WallOverMissedDoor over;
+    over.bias_in = w.Get<double>("bias_in", -kMaxMissedWallBiasIn, kMaxMissedWallBiasIn, "in");
+    over.sigma_in = w.Get<double>("sigma_in", 0.0, kMaxMissedWallBiasIn, "in");
+    w.Finish();
+    m.wall_over_missed_door = over;
+  }
   ReadLeafShares(node, &m);
   ReadMarks(node, &m);
   node.Finish();
@@ -414,6 +436,11 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
     c.row_correct[k] = row->second.correct;
     c.row_missized[k] = row->second.missized;
     c.row_missed[k] = row->second.missed;
+  }
+  if (model.wall_over_missed_door) {
+    c.missed_wall_bias_in = model.wall_over_missed_door->bias_in;
+    c.missed_wall_var_in2 =
+        model.wall_over_missed_door->sigma_in * model.wall_over_missed_door->sigma_in;
   }
   c.leaf_split = model.leaf_split;
   c.leaf_sliver = model.leaf_sliver;
@@ -701,6 +728,10 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
           "\n";
     }
     out += FormatClassRates(m.in_row->by_class, "    ");
+  }
+  if (m.wall_over_missed_door) {
+    out += "  wall_over_missed_door: {bias_in: " + number(m.wall_over_missed_door->bias_in) +
+           ", sigma_in: " + number(m.wall_over_missed_door->sigma_in) + "}\n";
   }
   if (m.leaf_split > 0.0 || m.leaf_sliver > 0.0 || m.leaf_wall_before > 0.0 ||
       m.leaf_wall_after > 0.0) {

@@ -77,6 +77,17 @@ struct ErrorModel {
     std::optional<double> wall_false_door_after_missed, wall_false_door_after_seen;
   };
   std::optional<InRow> in_row;
+  // A sensed wall that runs over missed doors (the jambs of a door not seen are no sensed
+  // boundary) is read longer than the true edges it spans, and more loosely, than the
+  // odometry alone makes a wall of that length (SensingNoise::WallSigmaIn): per missed door,
+  // a mean of `bias_in` and a further standard deviation of `sigma_in` (measured on the
+  // Engineering Building: +3.5 in, sd 3.1 in, against 1 in for a wall between two doors
+  // read right). Absent: such a wall is weighed as the true edges' length.
+  struct WallOverMissedDoor {
+    double bias_in = 0.0;
+    double sigma_in = 0.0;
+  };
+  std::optional<WallOverMissedDoor> wall_over_missed_door;
   // Per true class, where its mis-sized sightings go (sensed class -> probability). A class
   // not listed goes to its neighbouring classes equally (DefaultMissizedTargets).
   std::map<map::DoorClass, std::map<map::DoorClass, double>> missized_to;
@@ -140,6 +151,9 @@ struct Confusion {
   // ErrorModel::InRow::wall_false_door_after_seen / _after_missed, when the model has them.
   double row_false_door_after_seen = 0, row_false_door_after_missed = 0;
   bool row_false_door_by_before = false;
+  // ErrorModel::wall_over_missed_door, 0 without it: a sensed wall over `m` missed doors
+  // reads m * missed_wall_bias_in longer, with m * missed_wall_var_in2 more variance.
+  double missed_wall_bias_in = 0, missed_wall_var_in2 = 0;
   // The rates of a map door of class index `k`, in a row or not (MatchIndex::in_row).
   double Correct(int k, bool row) const { return row ? row_correct[k] : class_correct[k]; }
   double Missized(int k, bool row) const { return row ? row_missized[k] : class_missized[k]; }

@@ -236,6 +236,45 @@ TEST(ErrorModelFile, ReadsTheRowWallsRatesByTheDoorBeforeAndWritesThemBack) {
   EXPECT_DOUBLE_EQ(c.FalseDoorIn(90, false, Confusion::Before::kDoorMissed), 0.1591);
 }
 
+TEST(ErrorModelFile, ReadsTheWallsOverMissedDoorsAndWritesThemBack) {
+  const ErrorModel m =
+      ParseErrorModel(Model("  wall_over_missed_door: {bias_in: 3.5, sigma_in: 3.1}\n"), "m.yaml");
+  ASSERT_TRUE(m.wall_over_missed_door);
+  EXPECT_DOUBLE_EQ(m.wall_over_missed_door->bias_in, 3.5);
+  EXPECT_DOUBLE_EQ(m.wall_over_missed_door->sigma_in, 3.1);
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  ASSERT_TRUE(back.wall_over_missed_door);
+  EXPECT_DOUBLE_EQ(back.wall_over_missed_door->bias_in, 3.5);
+  EXPECT_DOUBLE_EQ(back.wall_over_missed_door->sigma_in, 3.1);
+  const Confusion c = Resolve(m, map::MatchIndex(testing::CorridorMap()));
+  EXPECT_DOUBLE_EQ(c.missed_wall_bias_in, 3.5);
+  EXPECT_DOUBLE_EQ(c.missed_wall_var_in2, 3.1 * 3.1);
+  // Without the key: no shift, no spread.
+  const Confusion none =
+      Resolve(ParseErrorModel(Model(""), "m.yaml"), map::MatchIndex(testing::CorridorMap()));
+  EXPECT_EQ(none.missed_wall_bias_in, 0.0);
+  EXPECT_EQ(none.missed_wall_var_in2, 0.0);
+}
+
+TEST(ErrorModelFile, BadWallsOverMissedDoorsAreRejectedWithTheirKey) {
+  try {
+    ParseErrorModel(Model("  wall_over_missed_door: {bias_in: 3.5, sigma_in: -1}\n"), "m.yaml");
+    FAIL() << "accepted a negative sigma";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 7);
+    EXPECT_NE(e.key().find("wall_over_missed_door.sigma_in"), std::string::npos) << e.key();
+  }
+  EXPECT_THROW(
+      ParseErrorModel(Model("  wall_over_missed_door: {bias_in: 30, sigma_in: 1}\n"), "m.yaml"),
+      InputError);
+  EXPECT_THROW(ParseErrorModel(Model("  wall_over_missed_door: {bias_in: 3}\n"), "m.yaml"),
+               InputError);
+  EXPECT_THROW(ParseErrorModel(Model("  wall_over_missed_door: 3\n"), "m.yaml"), InputError);
+  ErrorModel m = ErrorModel::Paper();
+  m.wall_over_missed_door = ErrorModel::WallOverMissedDoor{1.0, -2.0};
+  EXPECT_THROW(m.Validate(), std::invalid_argument);
+}
+
 TEST(ErrorModelFile, OneRowWallRateByTheDoorBeforeWithoutTheOtherIsRejected) {
   try {
     ParseErrorModel(Model("  in_row:\n"

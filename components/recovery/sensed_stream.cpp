@@ -202,6 +202,7 @@ void SensedStream::AddPiece(const Piece& piece) {
     run_error_ = true;
     run_whole_ = false;
     run_last_missed_ = p.missed_door;
+    run_missed_ += p.missed_door;
     return;
   }
   FlushRun(p.kind == Piece::kDoor);
@@ -216,6 +217,7 @@ void SensedStream::AddPiece(const Piece& piece) {
   run_whole_ = p.whole_edge;
   run_lower_bound_ = clipped;
   run_last_missed_ = p.missed_door;
+  run_missed_ = p.missed_door;
   if (p.kind == Piece::kOther) FlushRun(false);  // other edge types never merge
 }
 
@@ -226,6 +228,15 @@ void SensedStream::FlushRun(bool door_follows) {
   const double true_len = run_.b - run_.a;
   e.sensed.code = run_.code;
   e.sensed.metric_in = MeasureLength(true_len, run_lower_bound_ ? 1 : 2);
+  if (run_missed_ > 0 &&
+      (confusion_.missed_wall_bias_in != 0.0 || confusion_.missed_wall_var_in2 > 0.0)) {
+    // ErrorModel::wall_over_missed_door: longer and looser per missed door it runs over.
+    double extra = run_missed_ * confusion_.missed_wall_bias_in;
+    if (confusion_.missed_wall_var_in2 > 0.0) {
+      extra += std::sqrt(run_missed_ * confusion_.missed_wall_var_in2) * Gauss();
+    }
+    e.sensed.metric_in = std::max(std::min(true_len, 0.5), e.sensed.metric_in + extra);
+  }
   e.sensed.metric_is_lower_bound = run_lower_bound_;
   e.sensed.angle_deg = first_emitted_ ? run_.start_angle : std::numeric_limits<double>::quiet_NaN();
   e.truth = run_.truth;

@@ -152,6 +152,7 @@ class SensedStream {
   bool run_whole_ = false;  // one whole map edge (or the seen part of the first one)
   bool run_lower_bound_ = false;
   bool run_last_missed_ = false;  // its newest piece is a missed door
+  int run_missed_ = 0;            // missed doors it runs over
   bool first_emitted_ = false;
   // A deque: At() hands out pointers that later edges must not invalidate.
   std::deque<StreamEdge> edges_;

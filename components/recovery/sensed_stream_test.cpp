@@ -118,6 +118,33 @@ TEST_F(SensedStreamTest, MissedDoorsJoinTheWallsAroundThem) {
   }
 }
 
+TEST_F(SensedStreamTest, AWallOverMissedDoorsIsReadLongerPerMissedDoor) {
+  ErrorModel em = ErrorModel::None();
+  em.door_correct = 0.0;
+  em.door_missed = 1.0;
+  em.wall_over_missed_door = ErrorModel::WallOverMissedDoor{2.0, 0.0};
+  const Confusion shift = Resolve(em, index_);
+  SensedStream shifted(index_, shift, quiet_, exact_, 5);
+  em.wall_over_missed_door->sigma_in = 3.0;
+  const Confusion shift_and_spread = Resolve(em, index_);
+  SensedStream spread(index_, shift_and_spread, quiet_, exact_, 5);
+  // The 825 in stretch runs over its six doors: 12 in longer; the 150 in wall over none.
+  int long_walls = 0;
+  for (int i = 1; i < 10; ++i) {
+    const double m = shifted.At(i)->sensed.metric_in;
+    EXPECT_TRUE(std::abs(m - 150.0) < 1e-6 || std::abs(m - 837.0) < 1e-6) << m;
+    const double n = spread.At(i)->sensed.metric_in;
+    if (std::abs(m - 150.0) < 1e-6) {
+      EXPECT_NEAR(n, 150.0, 1e-6);
+    } else {
+      EXPECT_GT(std::abs(n - 837.0), 1e-6) << "no spread drawn";
+      EXPECT_LT(std::abs(n - 837.0), 5.0 * std::sqrt(6.0) * 3.0);
+      ++long_walls;
+    }
+  }
+  EXPECT_GT(long_walls, 0);
+}
+
 TEST(RunSeeds, DifferForEveryTrialAndRun) {
   EXPECT_NE(RunSeed(1, 0, 1), RunSeed(1, 1, 0));
   EXPECT_NE(RunSeed(1, 0, 0), RunSeed(2, 0, 0));

@@ -171,9 +171,37 @@ void SetRowWallRatesByBefore(const EdgeErrorCounts& c, recovery::ErrorModel* m) 
   m->in_row->wall_false_door_after_missed = rate(after[1]);
 }
 
+// ErrorModel::wall_over_missed_door from the walls over missed doors: with m doors missed
+// under a wall, its error is taken as m * bias plus a normal spread of the matcher's sigma
+// and m * sigma^2 more; both fitted by moments over the walls.
+void SetWallOverMissedDoor(const EdgeErrorCounts& c, const recovery::SensingNoise& noise,
+                           recovery::ErrorModel* m) {
+  double error_sum = 0.0, missed_sum = 0.0;
+  int walls = 0;
+  for (const EdgeErrorCounts::WallResidual& r : c.wall_residuals) {
+    if (r.missed_doors == 0) continue;
+    error_sum += r.error_in;
+    missed_sum += r.missed_doors;
+    ++walls;
+  }
+  if (walls < EdgeErrorCounts::kMinMissedWalls) return;
+  recovery::ErrorModel::WallOverMissedDoor over;
+  over.bias_in = error_sum / missed_sum;
+  double excess = 0.0;
+  for (const EdgeErrorCounts::WallResidual& r : c.wall_residuals) {
+    if (r.missed_doors == 0) continue;
+    const double d = r.error_in - r.missed_doors * over.bias_in;
+    const double sigma = std::max(1.0, noise.WallSigmaIn(r.true_in));
+    excess += d * d - sigma * sigma;
+  }
+  over.sigma_in = std::sqrt(std::max(0.0, excess / missed_sum));
+  m->wall_over_missed_door = over;
+}
+
 }  // namespace
 
-recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
+recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source,
+                                              const recovery::SensingNoise* noise) const {
   recovery::ErrorModel m;
   m.source = source;
   const double doors = std::max<long>(1, true_doors);
@@ -211,6 +239,7 @@ recovery::ErrorModel EdgeErrorCounts::ToModel(const std::string& source) const {
     m.leaf_wall_after = static_cast<double>(leaf_wall_after) / leaf_reads;
   }
   SetMarkReads(*this, &m);
+  if (noise != nullptr) SetWallOverMissedDoor(*this, *noise, &m);
   return m;
 }
 
@@ -422,6 +451,7 @@ void CountWallResiduals(const map::Ring& view_ring, const std::vector<map::Sense
       const map::Edge& e = view_ring.edges[passed[q].edge];
       r.true_in += e.metric_in;
       r.over_missed = r.over_missed || e.door_class.has_value();
+      r.missed_doors += e.door_class.has_value();
     }
     r.error_in = sensed[i].metric_in - r.true_in;
     r.start = end_kind(first - 1);

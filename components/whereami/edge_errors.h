@@ -47,6 +47,7 @@ struct EdgeErrorCounts {
     double true_in = 0.0;
     WallEnd start = WallEnd::kOther, end = WallEnd::kOther;
     bool over_missed = false;
+    int missed_doors = 0;  // the true doors between the ends that went unseen
   };
   static constexpr double kNodeNearIn = 8.0;
   std::vector<WallResidual> wall_residuals;
@@ -116,8 +117,14 @@ struct EdgeErrorCounts {
   // mark rows are the
   // read shares of each true mark seen (mis-sized reads shrunk likewise towards the reads
   // with the class right), and of the false doors.
+  // With the matcher's `noise`, the walls over missed doors (wall_residuals) also give
+  // ErrorModel::wall_over_missed_door, where at least kMinMissedWalls were measured: the
+  // mean error per missed door, and the spread per missed door beyond the matcher's own
+  // sigma of each wall (SensingNoise::WallSigmaIn).
   static constexpr double kClassPriorDoors = 20.0;
-  recovery::ErrorModel ToModel(const std::string& source) const;
+  static constexpr int kMinMissedWalls = 20;
+  recovery::ErrorModel ToModel(const std::string& source,
+                               const recovery::SensingNoise* noise = nullptr) const;
 };
 
 // Compares the sensed edges (with the odometer readings they spanned) with the true view

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace stickrep::whereami {
@@ -251,6 +252,36 @@ TEST(EdgeErrorsTest, CountsTheRowWallsFalseDoorsByTheDoorsBesideThemAndTheWallsL
   EXPECT_EQ(c.wall_residuals[1].start, EdgeErrorCounts::WallEnd::kDoorRight);
   EXPECT_EQ(c.wall_residuals[1].end, EdgeErrorCounts::WallEnd::kDoorRight);
   EXPECT_NEAR(c.wall_residuals[1].error_in, 0.0, 1e-9);
+  EXPECT_EQ(c.wall_residuals[0].missed_doors, 1);
+  EXPECT_EQ(c.wall_residuals[1].missed_doors, 0);
+}
+
+// ErrorModel::wall_over_missed_door by moments: per missed door the mean error, and the
+// spread beyond the matcher's sigma of each wall.
+TEST(EdgeErrorsTest, WallsOverMissedDoorsGiveTheirShiftAndSpreadPerMissedDoor) {
+  recovery::SensingNoise noise = recovery::SensingNoise::None();  // the matcher's sigma: 1 in
+  EdgeErrorCounts c;
+  const auto wall = [&](double error, int missed) {
+    EdgeErrorCounts::WallResidual r;
+    r.error_in = error;
+    r.true_in = 100.0;
+    r.missed_doors = missed;
+    r.over_missed = missed > 0;
+    c.wall_residuals.push_back(r);
+  };
+  for (int i = 0; i < EdgeErrorCounts::kMinMissedWalls - 1; ++i) wall(i % 2 ? 1.0 : 7.0, 1);
+  wall(0.0, 0);
+  wall(50.0, 0);  // walls over no missed door do not count
+  EXPECT_FALSE(c.ToModel("test", &noise).wall_over_missed_door) << "too few walls";
+  EXPECT_FALSE(c.ToModel("test").wall_over_missed_door) << "without the matcher's noise";
+  wall(5.0, 2);
+  // 19 walls over one door (10 at +7, 9 at +1) and one over two at +5: 84 in over 21 doors,
+  // 4 in per door; the residuals 3 (x10), -3 (x9) and -3, less 1 in^2 each of the 20 walls:
+  // (180 - 20) / 21 in^2 per door.
+  const recovery::ErrorModel m = c.ToModel("test", &noise);
+  ASSERT_TRUE(m.wall_over_missed_door);
+  EXPECT_NEAR(m.wall_over_missed_door->bias_in, 84.0 / 21.0, 1e-9);
+  EXPECT_NEAR(m.wall_over_missed_door->sigma_in, std::sqrt(160.0 / 21.0), 1e-9);
 }
 
 }  // namespace

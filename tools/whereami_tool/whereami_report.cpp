@@ -226,6 +226,12 @@ void PrintMeasuredRates(const recovery::ErrorModel& model, const EdgeErrorCounts
                        std::sqrt(sq / std::max<std::size_t>(1, total.wall_error_in.size() - 1)));
   }
   PrintWallResiduals(total, noise, out);
+  if (model.wall_over_missed_door) {
+    out << fmt::format(
+        "  walls over missed doors, per missed door (wall_over_missed_door): "
+        "{:+.2f} in longer, {:.2f} in sd beyond the matcher's own\n",
+        model.wall_over_missed_door->bias_in, model.wall_over_missed_door->sigma_in);
+  }
   out << "  by door width (in): passed, with their class, mis-sized, missed\n";
   for (const auto& [width, t] : total.by_width) {
     out << fmt::format("    {:>3}  {:>5} {:>5} {:>5} {:>5}  ({:.0f} % missed)\n", width, t.passed,
@@ -258,19 +264,18 @@ int Measure(const RunSetup& setup, const ToolOptions& options, std::ostream& out
                      options.measure_ft);
   EdgeErrorCounts total;
   const int failed = TallyMeasuredRuns(setup, options, out, total);
-  const std::string source =
-      fmt::format("measured by stickrep-whereami on {} ({}), seeds {}..{}, {} true doors, {} true "
-                  "walls",
-                  setup.map->info().name,
-                  options.rings.empty() ? std::string("the virtual robot's ring")
-                                        : fmt::format("{}", fmt::join(options.rings, " ")),
-                  options.first_seed,
-                  options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
-                  total.true_doors, total.true_walls);
-  const recovery::ErrorModel model = total.ToModel(source);
+  const std::string source = fmt::format(
+      "measured by stickrep-whereami on {} ({}), seeds {}..{}, {} true doors, {} true "
+      "walls",
+      setup.map->info().name,
+      options.rings.empty() ? std::string("the virtual robot's ring")
+                            : fmt::format("{}", fmt::join(options.rings, " ")),
+      options.first_seed, options.first_seed + static_cast<std::uint64_t>(options.runs) - 1,
+      total.true_doors, total.true_walls);
   const recovery::SensingNoise noise =
       localizer::MakeLocalizerConfig(localizer::ForMap(setup.localizer, *setup.map), *setup.map)
           .bayes.noise;
+  const recovery::ErrorModel model = total.ToModel(source, &noise);
   PrintMeasuredRates(model, total, noise, out);
   if (!options.error_model_out.empty()) {
     if (failed > 0 || total.true_doors == 0) {
