@@ -1,11 +1,12 @@
 #include "runtime/deployment_options.h"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include <chrono>
+#include <string>
+#include <vector>
 
 namespace stickrep::runtime {
 
@@ -83,6 +84,7 @@ void WatchAuthentication(const Participant& participant, Executor& executor,
     size_t refused = 0;
     size_t authenticated = 0;
     int waited_for_name = 0;  // timer ticks the next authenticated participant had no name
+    std::vector<std::string> unnamed;  // logged without a name: logged again with it
   };
   auto logged = std::make_shared<Logged>();
   executor.AddTimer(1.0, [&participant, log, logged] {
@@ -92,14 +94,27 @@ void WatchAuthentication(const Participant& participant, Executor& executor,
       log->warn("DDS Security: participant {} failed authentication: ignored",
                 refused[logged->refused]);
     }
+    // The launcher's handshake watch reads the names from these lines: a participant whose
+    // name came after it was logged is logged again, named.
+    auto& unnamed = logged->unnamed;
+    for (auto it = unnamed.begin(); it != unnamed.end();) {
+      const std::string name = d.NameOf(*it);
+      if (name.empty()) {
+        ++it;
+        continue;
+      }
+      log->info("DDS Security: participant {} ({}) authenticated", *it, name);
+      it = unnamed.erase(it);
+    }
     const auto authenticated = d.AuthenticatedPrefixes();
     for (; logged->authenticated < authenticated.size(); ++logged->authenticated) {
       const std::string& prefix = authenticated[logged->authenticated];
       const std::string name = d.NameOf(prefix);
       // The name comes with the participant's discovery, just after its authentication: wait
-      // a few ticks for it (the launcher's handshake watch reads the names from these lines).
+      // a few ticks for it, then log it without and again once it comes.
       if (name.empty() && ++logged->waited_for_name < kTicksToWaitForAName) break;
       logged->waited_for_name = 0;
+      if (name.empty()) unnamed.push_back(prefix);
       log->info("DDS Security: participant {} ({}) authenticated", prefix,
                 name.empty() ? "name not yet discovered" : name);
     }
