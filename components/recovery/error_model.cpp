@@ -88,6 +88,17 @@ static void ValidateClassRates(const std::map<DoorClass, ErrorModel::DoorRates>&
   }
 }
 
+static void ValidateWallOverMissedDoor(const ErrorModel::WallOverMissedDoor& w) {
+  if (!(std::abs(w.bias_in) <= kMaxMissedWallBiasIn)) {
+    throw std::invalid_argument("wall_over_missed_door.bias_in is " + Num(w.bias_in) +
+                                ", not in [-24, 24]");
+  }
+  if (!(w.sigma_in >= 0.0 && w.sigma_in <= kMaxMissedWallBiasIn)) {
+    throw std::invalid_argument("wall_over_missed_door.sigma_in is " + Num(w.sigma_in) +
+                                ", not in [0, 24]");
+  }
+}
+
 void ErrorModel::Validate() const {
   RequireProbability(door_correct, "door_correct");
   RequireProbability(door_missized, "door_missized");
@@ -149,17 +160,7 @@ void ErrorModel::Validate() const {
     }
     ValidateClassRates(in_row->by_class, "in_row.by_class.");
   }
-  if (wall_over_missed_door) {
-    if (!(std::abs(wall_over_missed_door->bias_in) <= kMaxMissedWallBiasIn)) {
-      throw std::invalid_argument("wall_over_missed_door.bias_in is " +
-                                  Num(wall_over_missed_door->bias_in) + ", not in [-24, 24]");
-    }
-    if (!(wall_over_missed_door->sigma_in >= 0.0 &&
-          wall_over_missed_door->sigma_in <= kMaxMissedWallBiasIn)) {
-      throw std::invalid_argument("wall_over_missed_door.sigma_in is " +
-                                  Num(wall_over_missed_door->sigma_in) + ", not in [0, 24]");
-    }
-  }
+  if (wall_over_missed_door) ValidateWallOverMissedDoor(*wall_over_missed_door);
   RequireProbability(leaf_split, "leaf_split");
   RequireProbability(leaf_sliver, "leaf_sliver");
   RequireProbability(leaf_wall_before, "leaf_wall_before");
@@ -402,6 +403,27 @@ double Confusion::FalseDoorIn(double len_in, bool row, Before before) const {
   return -std::expm1(-false_door_per_in * std::max(0.0, len_in));
 }
 
+// Confusion's per-class rates, alone and in a row: the model's own where it gives them, else
+// the overall rates (in a row: the class's rates alone).
+static void ResolveClassRates(const ErrorModel& model, Confusion* c) {
+  for (int k = 0; k < kDoorClasses; ++k) {
+    const auto it = model.by_class.find(static_cast<DoorClass>(k));
+    const bool own = it != model.by_class.end();
+    c->class_correct[k] = own ? it->second.correct : c->correct;
+    c->class_missized[k] = own ? it->second.missized : c->missized;
+    c->class_missed[k] = own ? it->second.missed : c->missed;
+    c->row_correct[k] = c->class_correct[k];
+    c->row_missized[k] = c->class_missized[k];
+    c->row_missed[k] = c->class_missed[k];
+    if (!model.in_row) continue;
+    const auto row = model.in_row->by_class.find(static_cast<DoorClass>(k));
+    if (row == model.in_row->by_class.end()) continue;
+    c->row_correct[k] = row->second.correct;
+    c->row_missized[k] = row->second.missized;
+    c->row_missed[k] = row->second.missed;
+  }
+}
+
 Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
   Confusion c;
   c.correct = model.door_correct;
@@ -421,22 +443,7 @@ Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
     c.row_false_door_after_seen = *model.in_row->wall_false_door_after_seen;
     c.row_false_door_by_before = true;
   }
-  for (int k = 0; k < kDoorClasses; ++k) {
-    const auto it = model.by_class.find(static_cast<DoorClass>(k));
-    const bool own = it != model.by_class.end();
-    c.class_correct[k] = own ? it->second.correct : c.correct;
-    c.class_missized[k] = own ? it->second.missized : c.missized;
-    c.class_missed[k] = own ? it->second.missed : c.missed;
-    c.row_correct[k] = c.class_correct[k];
-    c.row_missized[k] = c.class_missized[k];
-    c.row_missed[k] = c.class_missed[k];
-    if (!model.in_row) continue;
-    const auto row = model.in_row->by_class.find(static_cast<DoorClass>(k));
-    if (row == model.in_row->by_class.end()) continue;
-    c.row_correct[k] = row->second.correct;
-    c.row_missized[k] = row->second.missized;
-    c.row_missed[k] = row->second.missed;
-  }
+  ResolveClassRates(model, &c);
   if (model.wall_over_missed_door) {
     c.missed_wall_bias_in = model.wall_over_missed_door->bias_in;
     c.missed_wall_var_in2 =
@@ -677,6 +684,18 @@ static std::string FormatClassRates(const std::map<DoorClass, ErrorModel::DoorRa
   return out;
 }
 
+// The `in_row:` block of an error model file.
+static std::string FormatInRow(const ErrorModel::InRow& row) {
+  const auto number = RoundTripNumber;
+  std::string out = "  in_row:\n";
+  if (row.wall_false_door) out += "    wall_false_door: " + number(*row.wall_false_door) + "\n";
+  if (row.wall_false_door_after_missed && row.wall_false_door_after_seen) {
+    out += "    wall_false_door_after_missed: " + number(*row.wall_false_door_after_missed) +
+           "\n    wall_false_door_after_seen: " + number(*row.wall_false_door_after_seen) + "\n";
+  }
+  return out + FormatClassRates(row.by_class, "    ");
+}
+
 std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment) {
   const auto number = RoundTripNumber;
   const auto distribution = [&](const std::map<map::DoorClass, double>& d) {
@@ -716,19 +735,7 @@ std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment
   out += "  missized_to: " + missized + "}\n";
   out += "  false_door_classes: " + distribution(m.false_door_classes) + "\n";
   out += FormatClassRates(m.by_class, "  ");
-  if (m.in_row) {
-    out += "  in_row:\n";
-    if (m.in_row->wall_false_door) {
-      out += "    wall_false_door: " + number(*m.in_row->wall_false_door) + "\n";
-    }
-    if (m.in_row->wall_false_door_after_missed && m.in_row->wall_false_door_after_seen) {
-      out +=
-          "    wall_false_door_after_missed: " + number(*m.in_row->wall_false_door_after_missed) +
-          "\n    wall_false_door_after_seen: " + number(*m.in_row->wall_false_door_after_seen) +
-          "\n";
-    }
-    out += FormatClassRates(m.in_row->by_class, "    ");
-  }
+  if (m.in_row) out += FormatInRow(*m.in_row);
   if (m.wall_over_missed_door) {
     out += "  wall_over_missed_door: {bias_in: " + number(m.wall_over_missed_door->bias_in) +
            ", sigma_in: " + number(m.wall_over_missed_door->sigma_in) + "}\n";
