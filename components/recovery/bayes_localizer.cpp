@@ -156,10 +156,22 @@ double BayesLocalizer::WallDensityOverMissed(double measured, double true_len, i
   const double mean = true_len + missed * c.missed_wall_bias_in;
   const double var = extra_var + missed * c.missed_wall_var_in2;
   if (var <= 0.0 && mean == true_len) return WallDensity(measured, true_len);
-  const double base = model_.noise.WallSigmaIn(std::max(true_len, 0.0));
-  const double sigma = std::max(1.0, std::sqrt(base * base + var));
+  return WidenedWallDensity(measured, mean, true_len, var);
+}
+
+double BayesLocalizer::WidenedWallDensity(double measured, double mean, double len_in,
+                                          double extra_var) const {
+  const double base = model_.noise.WallSigmaIn(std::max(len_in, 0.0));
+  const double sigma = std::max(1.0, std::sqrt(base * base + extra_var));
   const double z = (measured - mean) / sigma;
   return std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
+}
+
+double BayesLocalizer::FalseDoorVar(int s) const {
+  // The false door's two jambs and its measured width.
+  const SensingNoise& nz = model_.noise;
+  const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
+  return 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig;
 }
 
 double BayesLocalizer::AngleFactor(int g, int dir, const map::SensedEdge& e) const {
@@ -583,12 +595,9 @@ void BayesLocalizer::NextSecondPartOverMissedDoors(int s, double p2, double angl
                                                    const map::SensedEdge& e) {
   if (!model_.settings.w2_over_missed_doors || lb2_[s]) return;  // where W2 begins: unknown
   const int dir = s % 2 == 0 ? +1 : -1;
-  const SensingNoise& nz = model_.noise;
-  const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
   // As SecondPartDensity: the false door's two jambs and its width land on the merged wall.
-  const double extra_var = 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig;
   RunOnOverMissedDoors(s / 2, dir, std::max(0.0, index_.metric(s / 2) - c2_[s]), p2 * angle, 1.0,
-                       extra_var, e);
+                       FalseDoorVar(s), e);
 }
 
 void BayesLocalizer::NextFromFirstPart(int s, double p1, const map::SensedEdge& e) {
@@ -670,13 +679,7 @@ double BayesLocalizer::SecondPartDensity(int s, const map::SensedEdge& e) const 
   }
   // W1 + ribbon + W2 spans the whole wall: its odometry error, two more jambs and
   // the ribbon's measured width all land on W2.
-  const SensingNoise& nz = model_.noise;
-  const double wsig = nz.width_sigma_rel * (c2_[s] - c1_[s]);
-  const double base = nz.WallSigmaIn(len);
-  const double sigma = std::max(
-      1.0, std::sqrt(base * base + 2.0 * nz.jamb_sigma_in * nz.jamb_sigma_in + wsig * wsig));
-  const double z = (e.metric_in - rest) / sigma;
-  return std::exp(-0.5 * z * z) / (kSqrt2Pi * sigma);
+  return WidenedWallDensity(e.metric_in, rest, len, FalseDoorVar(s));
 }
 
 void BayesLocalizer::Normalise() {

@@ -113,6 +113,12 @@ class BayesLocalizer {
   // and widened by `extra_var` (in^2) more.
   double WallDensityOverMissed(double measured, double true_len, int missed,
                                double extra_var) const;
+  // A normal density about `mean` whose variance is a wall of `len_in`'s
+  // (SensingNoise::WallSigmaIn) plus `extra_var` (in^2).
+  double WidenedWallDensity(double measured, double mean, double len_in, double extra_var) const;
+  // The variance a false door of leaf state `s` adds to the wall it splits: its two jambs and
+  // its measured width (in^2).
+  double FalseDoorVar(int s) const;
   // The probability that map door `door` is missed (its class's rate).
   double Missed(int door) const;
   // The false-door rate of map wall `wall` (in a row of doors or not; by its length where
