@@ -640,6 +640,7 @@ static StudyConfig StudyConfigFromYaml(const StrictYaml& root) {
   c.bayes.max_missed_doors = bayes.Get<int>("max_missed_doors", 0, 4);
   c.bayes.angle_tolerance_deg = bayes.Get<double>("angle_tolerance_deg", 0.0, 180.0, "deg");
   c.bayes.w2_over_missed_doors = bayes.GetOr<bool>("w2_over_missed_doors", false);
+  c.bayes.false_door_fit = bayes.GetOr<bool>("false_door_fit", false);
   bayes.Finish();
   node.Finish();
   root.Finish();

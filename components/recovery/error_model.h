@@ -47,7 +47,7 @@ struct ErrorModel {
   // it every wall holds one at most, at wall_false_door. The pipeline reads a false door on a
   // stretch of wall (a panel, a poster, a shadow), so a long wall holds more: measured on the
   // science hall, 16 % of the walls of 60-120 in and 123 % of those of 480-960 in
-  // (docs/whereami.md). The study's sampler keeps wall_false_door.
+  // (docs/whereami.md). The study's sampler draws them alike (SensedStream).
   std::optional<double> wall_false_door_per_in;
   // With wall_false_door_per_in, the most false doors one wall holds (a false door past
   // that many is left to the outlier). Without it a wall holds any number: each rest of a
@@ -251,7 +251,7 @@ struct BayesSettings {
   // odometry and jamb noise (BayesLocalizer::Fits). Off, W1 is uniform over the whole wall
   // and any false door is taken after it, which leaves belief on "a false door inside the
   // wall just sensed" at every door (docs/whereami.md, "The doors' marks"). Off in the
-  // study, which was measured without it.
+  // study, which was measured without it, unless its config asks (bayes.false_door_fit).
   bool false_door_fit = false;
   // The rest of a wall past a false door (W2) may run on over missed doors into the walls
   // beyond, as a sensed wall before a false door may (BayesLocalizer::

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "common/input_error.h"
@@ -354,6 +356,19 @@ TEST(StudyConfigFile, ShippedConfigLoads) {
   EXPECT_DOUBLE_EQ(c.FrameTravelIn(), 6.24);
   ASSERT_EQ(c.relaxation_steps.size(), 2u);
   EXPECT_DOUBLE_EQ(c.relaxation_steps[1], 0.20);
+}
+
+TEST(StudyConfigFile, TheFalseDoorFitIsOffUnlessAsked) {
+  std::ifstream f(std::string(STICKREP_SOURCE_DIR) + "/configs/study.yaml");
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_FALSE(ParseStudyConfig(text, "study.yaml").bayes.false_door_fit);
+  const std::string key = "    w2_over_missed_doors: true\n";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + key.size(), "    false_door_fit: true\n");
+  EXPECT_TRUE(ParseStudyConfig(text, "study.yaml").bayes.false_door_fit);
+  text.replace(text.find("false_door_fit: true"), 20, "false_door_fit: 3");
+  EXPECT_THROW(ParseStudyConfig(text, "study.yaml"), InputError);
 }
 
 TEST(StudyConfigFile, MissingFileNamesIt) {

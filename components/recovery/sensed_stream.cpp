@@ -68,11 +68,11 @@ double SensedStream::Gauss() {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
 }
 
-map::DoorMark SensedStream::DrawMark(int truth) {
+map::DoorMark SensedStream::DrawMark(int truth, bool class_right) {
   if (!confusion_.marks) return map::DoorMark::kUnknown;
-  const ErrorModel::MarkRow& row =
-      truth < 0 ? confusion_.false_mark : confusion_.mark_read[static_cast<int>(index_.mark(truth))];
-  return static_cast<map::DoorMark>(Draw(row));
+  if (truth < 0) return static_cast<map::DoorMark>(Draw(confusion_.false_mark));
+  const auto& rows = class_right ? confusion_.mark_read : confusion_.mark_read_missized;
+  return static_cast<map::DoorMark>(Draw(rows[static_cast<int>(index_.mark(truth))]));
 }
 
 const StreamEdge* SensedStream::At(int i) {
@@ -105,8 +105,16 @@ void SensedStream::ProcessNextTrueEdge() {
     SenseDoor(p, code, len);
     return;
   }
+  const Confusion::Before before = before_;
+  before_ = Confusion::Before::kUnknown;
   if (code == map::kWallCode) {
-    SenseWall(p, len);
+    if (leaf_to_next_in_ > 0.0) {
+      // The other leaf of the door before, read as part of this wall.
+      p.a -= leaf_to_next_in_;
+      p.error = true;
+      leaf_to_next_in_ = 0.0;
+    }
+    SenseWall(p, len, before);
     return;
   }
   p.kind = Piece::kOther;
@@ -130,37 +138,104 @@ void SensedStream::SenseDoor(Piece p, map::SymbolCode code, double len) {
     p.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(confusion_.missized_to[k])));
     p.true_width_in = len;
     p.error = true;
-    p.mark = DrawMark(p.truth);
+    p.mark = DrawMark(p.truth, false);
+    const double deficit = len - map::DoorClassWidthIn(static_cast<map::DoorClass>(p.code - 1));
+    if (LeafReads() && deficit >= kLeafDeficitIn) {
+      before_ = Confusion::Before::kDoorSeen;
+      SenseLeaf(p, deficit);
+      return;
+    }
   } else {
     p.kind = Piece::kSurface;
     p.code = map::kWallCode;
     p.error = true;
     p.missed_door = true;
   }
+  before_ = p.missed_door ? Confusion::Before::kDoorMissed : Confusion::Before::kDoorSeen;
   AddPiece(p);
 }
 
-void SensedStream::SenseWall(Piece p, double len) {
-  const double false_door = confusion_.FalseDoor(index_.in_row(p.truth));
-  if (false_door > 0.0 && Uniform() < false_door) {
+bool SensedStream::LeafReads() const {
+  return confusion_.leaf_split + confusion_.leaf_before + confusion_.leaf_after > 0.0;
+}
+
+void SensedStream::SenseLeaf(Piece p, double deficit) {
+  const int k = index_.code(p.truth) - 1;
+  p.true_width_in -= deficit;
+  const double u = Uniform();
+  const Confusion& cf = confusion_;
+  if (u < cf.leaf_split) {
+    // The other leaf as a second door, after a sliver of wall (the meeting stiles) or not.
+    Piece first = p;
+    first.b = p.a + p.true_width_in;
+    AddPiece(first);
+    Piece other = p;
+    other.start_angle = 180.0;
+    other.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(cf.missized_to[k])));
+    other.true_width_in = map::DoorClassWidthIn(static_cast<map::DoorClass>(other.code - 1));
+    other.mark = DrawMark(p.truth, false);
+    other.a = first.b;
+    if (Uniform() < cf.leaf_sliver) {
+      Piece sliver = p;
+      sliver.kind = Piece::kSurface;
+      sliver.code = map::kWallCode;
+      sliver.start_angle = 180.0;
+      sliver.a = first.b;
+      sliver.b = first.b + Uniform() * deficit;
+      other.a = sliver.b;
+      AddPiece(sliver);
+    }
+    AddPiece(other);
+    return;
+  }
+  if (u < cf.leaf_split + cf.leaf_before) {
+    // The wall just before took the first leaf: only a whole wall read as itself, the map
+    // edge before the door, as the Bayes filter weighs it (the H phase).
+    if (run_active_ && run_.kind == Piece::kSurface && run_pieces_ == 1 && !run_error_ &&
+        !run_lower_bound_ && first_emitted_ && run_.truth == index_.Step(p.truth, -start_.dir) &&
+        Coplanar(p.start_angle)) {
+      run_.b += deficit;
+      run_error_ = true;
+      p.a += deficit;
+    }
+  } else if (u < cf.leaf_split + cf.leaf_before + cf.leaf_after) {
+    // The wall just after takes the other leaf, where it is a wall on the same plane.
+    const int w = index_.Step(p.truth, start_.dir);
+    const double a_out = w < 0 ? 0.0 : start_.dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
+    if (w >= 0 && index_.code(w) == map::kWallCode && Coplanar(a_out)) {
+      p.b -= deficit;
+      leaf_to_next_in_ = deficit;
+    }
+  }
+  AddPiece(p);
+}
+
+void SensedStream::SenseWall(Piece p, double len, Confusion::Before before) {
+  const bool row = index_.in_row(p.truth);
+  double false_door = confusion_.FalseDoorIn(len, row, before);
+  for (int held = 0; false_door > 0.0 && Uniform() < false_door;) {
     const int c = DrawClass(confusion_.false_class);
     const double w = map::DoorClassWidthIn(static_cast<map::DoorClass>(c));
     const double at = Uniform() * std::max(0.0, len - w);
-    if (len > w) {
-      // The ribbon splits the wall: W1, a false door, W2 (§6.4.2 false positive).
-      SplitByFalseDoor(p, c, w, at);
-      return;
-    }
     // A wall narrower than the ribbon cannot hold a false door of that class.
+    if (len <= w) break;
+    // The ribbon splits the wall: W1, a false door, W2 (§6.4.2 false positive); with the
+    // per-inch model W2 may hold another, as the Bayes filter allows (a row's wall not).
+    p = SplitByFalseDoor(p, c, w, at);
+    len = p.b - p.a;
+    if (row || !confusion_.AnotherFalseDoor(++held)) break;
+    false_door = confusion_.FalseDoorIn(len, false);
   }
-  p.kind = Piece::kSurface;
-  p.code = map::kWallCode;
-  p.whole_edge = true;
+  if (!p.error) {
+    p.kind = Piece::kSurface;
+    p.code = map::kWallCode;
+    p.whole_edge = true;
+  }
   AddPiece(p);
 }
 
-void SensedStream::SplitByFalseDoor(const Piece& p, int false_class, double width_in,
-                                    double at_in) {
+SensedStream::Piece SensedStream::SplitByFalseDoor(const Piece& p, int false_class, double width_in,
+                                                   double at_in) {
   const double a = p.a;
   Piece w1 = p;
   w1.kind = Piece::kSurface;
@@ -179,10 +254,11 @@ void SensedStream::SplitByFalseDoor(const Piece& p, int false_class, double widt
   w2.kind = Piece::kSurface;
   w2.a = door.b;
   w2.error = true;
+  w2.whole_edge = false;
   w2.start_angle = 180.0;
   AddPiece(w1);
   AddPiece(door);
-  AddPiece(w2);
+  return w2;
 }
 
 void SensedStream::AddPiece(const Piece& piece) {

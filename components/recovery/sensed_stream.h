@@ -6,11 +6,18 @@
 // direction. Every true edge it passes is turned into sensed edges:
 //
 //   door, correct (Table 6.10 true positive)  -> a door of its class, width measured
-//   door, mis-sized                           -> a door of another class (missized_to)
+//   door, mis-sized                           -> a door of another class (missized_to);
+//                                                a double door read as one leaf leaves
+//                                                the other as the model's leaf reads go
 //   door, missed (false negative)             -> wall surface: its width joins the walls
 //                                                around it across coplanar (180°) nodes
 //   wall, false door (false positive)         -> wall W1, a false door, wall W2, with the
-//                                                ribbon at a uniform place in the wall
+//                                                ribbon at a uniform place in the wall;
+//                                                the rate as the Bayes filter weighs it
+//                                                (Confusion::FalseDoorIn: per wall or by
+//                                                its length, a row's wall by the door
+//                                                before it), and with the per-inch model
+//                                                W2 may hold another (AnotherFalseDoor)
 //   wall or other edge                        -> itself, length measured by odometry
 //
 // A sensed edge is complete when the robot passes its far end; its sensed boundaries are
@@ -103,9 +110,17 @@ class SensedStream {
   void ProcessNextTrueEdge();
   // The error model's draws for one true door or wall `p` (a piece of length `len`).
   void SenseDoor(Piece p, map::SymbolCode code, double len);
-  void SenseWall(Piece p, double len);
-  // The false door of class `false_class`, width_in wide, at_in into wall `p`.
-  void SplitByFalseDoor(const Piece& p, int false_class, double width_in, double at_in);
+  void SenseWall(Piece p, double len, Confusion::Before before);
+  // A door `p` read mis-sized as one leaf, `deficit` in narrower: the rest of its width as
+  // the model's leaf reads go (ErrorModel::leaf_*, weighed by the Bayes filter's leaf
+  // phases): a second door, maybe after a sliver of wall; the wall before or after; or
+  // nowhere. Only when the model has those reads (LeafReads); else a mis-sized door keeps
+  // its walls as they are.
+  void SenseLeaf(Piece p, double deficit);
+  bool LeafReads() const;
+  // The false door of class `false_class`, width_in wide, at_in into wall `p`: adds W1 and
+  // the door, and gives back W2, the rest of the wall.
+  Piece SplitByFalseDoor(const Piece& p, int false_class, double width_in, double at_in);
   void AddPiece(const Piece& p);
   void FlushRun(bool door_follows);
   void EmitDoor(const Piece& p);
@@ -129,9 +144,10 @@ class SensedStream {
     return last;
   }
   int DrawClass(const ClassVector& p) { return Draw(p); }
-  // The mark a door's leaf is read as: of map edge `truth`'s mark, or of a false door's
-  // (truth < 0); kUnknown without a draw when the model has no marks.
-  map::DoorMark DrawMark(int truth);
+  // The mark a door's leaf is read as: of map edge `truth`'s mark, read with its class or
+  // mis-sized (Confusion::mark_read, mark_read_missized, as the Bayes filter weighs them),
+  // or of a false door's (truth < 0); kUnknown without a draw when the model has no marks.
+  map::DoorMark DrawMark(int truth, bool class_right = true);
 
   const map::MatchIndex& index_;
   const Confusion& confusion_;
@@ -143,6 +159,10 @@ class SensedStream {
 
   int next_edge_ = 0;      // next true edge to process (-1: open ring ended)
   double next_pos_ = 0.0;  // travel coordinate of its start
+  // How the true edge just processed was read, when it was a door (a row wall's false-door
+  // rate depends on it); kUnknown after any other edge.
+  Confusion::Before before_ = Confusion::Before::kUnknown;
+  double leaf_to_next_in_ = 0.0;  // a leaf's width the next true edge, a wall, begins with
   bool ended_ = false;
   // The wall surface being accumulated into one sensed wall.
   bool run_active_ = false;

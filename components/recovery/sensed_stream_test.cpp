@@ -145,6 +145,82 @@ TEST_F(SensedStreamTest, AWallOverMissedDoorsIsReadLongerPerMissedDoor) {
   EXPECT_GT(long_walls, 0);
 }
 
+// A row of four 36 in doors 40 in apart (the walls between them are in the row).
+map::Map RowMap() {
+  using map::DoorClass;
+  using map::Edge;
+  return testing::ClosedCorridor(
+      {Edge::Wall(120), Edge::Door(DoorClass::k36), Edge::Wall(40), Edge::Door(DoorClass::k36),
+       Edge::Wall(40), Edge::Door(DoorClass::k36), Edge::Wall(40), Edge::Door(DoorClass::k36),
+       Edge::Wall(200)},
+      {0, 8});
+}
+
+TEST_F(SensedStreamTest, ARowWallHoldsAFalseDoorByTheDoorBeforeIt) {
+  const map::Map row_map = RowMap();
+  const map::MatchIndex index(row_map);
+  ErrorModel em = ErrorModel::None();
+  em.door_correct = 0.5;
+  em.door_missed = 0.5;
+  em.false_door_classes = {{map::DoorClass::k30, 1.0}};
+  em.in_row = ErrorModel::InRow{};
+  em.in_row->wall_false_door = 0.5;
+  em.in_row->wall_false_door_after_missed = 1.0;
+  em.in_row->wall_false_door_after_seen = 0.0;
+  const Confusion c = Resolve(em, index);
+  int after_missed = 0, after_seen = 0;
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    SensedStream s(index, c, quiet_, exact_, seed);
+    for (int i = 2; i < 40; ++i) {
+      const StreamEdge* e = s.At(i);
+      const int w = e->truth;
+      if (!index.in_row(w) || !(index.code(w) == map::kWallCode)) continue;
+      const bool false_door = map::IsDoorCode(e->sensed.code);
+      if (false_door) {
+        // W1 before it; the true door before the wall was missed, so no sensed door stands
+        // for it just before W1.
+        const StreamEdge* before = s.At(i - 2);
+        EXPECT_FALSE(map::IsDoorCode(before->sensed.code) &&
+                     before->truth == index.Step(w, -s.dir()))
+            << "seed " << seed << " edge " << i;
+        ++after_missed;
+      } else if (map::IsDoorCode(s.At(i - 1)->sensed.code) &&
+                 s.At(i - 1)->truth == index.Step(w, -s.dir())) {
+        // After a door seen the row wall is read whole.
+        EXPECT_TRUE(e->faithful) << "seed " << seed << " edge " << i;
+        ++after_seen;
+      }
+    }
+  }
+  EXPECT_GT(after_missed, 20);
+  EXPECT_GT(after_seen, 20);
+}
+
+TEST_F(SensedStreamTest, ThePerInchModelPutsUpToItsMostFalseDoorsInOneWall) {
+  ErrorModel em = ErrorModel::None();
+  em.wall_false_door = 0.0;
+  em.false_door_classes = {{map::DoorClass::k30, 1.0}};
+  em.wall_false_door_per_in = 0.1;  // a wall of 75 in or more almost surely holds one
+  for (const int most : {1, 2}) {
+    em.wall_false_doors_max = most;
+    const Confusion c = Resolve(em, index_);
+    int max_seen = 0;
+    for (std::uint64_t seed = 0; seed < 20; ++seed) {
+      SensedStream s(index_, c, quiet_, exact_, seed);
+      // False doors in a row of sensed edges with the same true wall: one visit of it.
+      int in_wall = 0, wall = -1;
+      for (int i = 1; i < 60; ++i) {
+        const StreamEdge* e = s.At(i);
+        if (e->truth != wall) in_wall = 0;
+        wall = e->truth;
+        if (index_.code(wall) == map::kWallCode && map::IsDoorCode(e->sensed.code)) ++in_wall;
+        max_seen = std::max(max_seen, in_wall);
+      }
+    }
+    EXPECT_EQ(max_seen, most) << "wall_false_doors_max " << most;
+  }
+}
+
 TEST(RunSeeds, DifferForEveryTrialAndRun) {
   EXPECT_NE(RunSeed(1, 0, 1), RunSeed(1, 1, 0));
   EXPECT_NE(RunSeed(1, 0, 0), RunSeed(2, 0, 0));
@@ -187,6 +263,112 @@ TEST_F(SensedStreamTest, DoorsCarryAMarkDrawnFromTheirOwnMarksReads) {
   const Confusion paper = Resolve(ErrorModel::Paper(), index_);  // the stream keeps a reference
   SensedStream plain(index_, paper, quiet_, exact_, 7);
   for (int i = 0; i < 20; ++i) EXPECT_EQ(plain.At(i)->sensed.mark, map::DoorMark::kUnknown);
+}
+
+TEST_F(SensedStreamTest, AMisSizedDoorsMarkIsDrawnFromTheMisSizedReads) {
+  // Plain leaves read with their class are read plain; mis-sized, as posters.
+  ErrorModel em = ErrorModel::None();
+  em.door_correct = 0.5;
+  em.door_missized = 0.5;
+  em.mark_read[map::DoorMark::kPlain] = {0.0, 1.0, 0.0, 0.0};
+  em.mark_read_missized[map::DoorMark::kPlain] = {0.0, 0.0, 0.0, 1.0};
+  const Confusion cf = Resolve(em, index_);
+  int right = 0, missized = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    SensedStream s(index_, cf, quiet_, exact_, seed);
+    for (int i = 0; i < 20; ++i) {
+      const StreamEdge* e = s.At(i);
+      if (!map::IsDoorCode(e->sensed.code)) continue;
+      const bool class_right = e->sensed.code == index_.code(e->truth);
+      EXPECT_EQ(e->sensed.mark, class_right ? map::DoorMark::kPlain : map::DoorMark::kPoster);
+      ++(class_right ? right : missized);
+    }
+  }
+  EXPECT_GT(right, 30);
+  EXPECT_GT(missized, 30);
+}
+
+// Double doors between flat walls: W120 D36/36 W100 D36 W80 D36/36 W150 (a corner at node 0).
+class SensedLeafTest : public SensedStreamTest {
+ protected:
+  map::Map leaf_map_ = testing::ClosedCorridor(
+      {map::Edge::Wall(120), map::Edge::Door(map::DoorClass::k36_36), map::Edge::Wall(100),
+       map::Edge::Door(map::DoorClass::k36), map::Edge::Wall(80),
+       map::Edge::Door(map::DoorClass::k36_36), map::Edge::Wall(150)},
+      {0});
+  map::MatchIndex leaf_index_{leaf_map_};
+  // Every double door read as one 36 in leaf (36 in short), the rest of its width as `em`'s
+  // leaf reads go; single doors read right.
+  Confusion LeafModel(double split, double sliver, double before, double after) const {
+    ErrorModel em = ErrorModel::None();
+    em.by_class[map::DoorClass::k36_36] = {0.0, 1.0, 0.0};
+    em.missized_to[map::DoorClass::k36_36] = {{map::DoorClass::k36, 1.0}};
+    em.leaf_split = split;
+    em.leaf_sliver = sliver;
+    em.leaf_wall_before = before;
+    em.leaf_wall_after = after;
+    return Resolve(em, leaf_index_);
+  }
+  // The sensed edges of 20 runs from the third on, each with the one before and after.
+  template <typename F>
+  void ForEachLeaf(const Confusion& c, F check) const {
+    for (std::uint64_t seed = 0; seed < 20; ++seed) {
+      SensedStream s(leaf_index_, c, quiet_, exact_, seed);
+      for (int i = 2; i < 30; ++i) {
+        const StreamEdge* e = s.At(i);
+        if (map::IsDoorCode(e->sensed.code) &&
+            leaf_index_.code(e->truth) == map::DoorCode(map::DoorClass::k36_36)) {
+          check(*s.At(i - 1), *e, *s.At(i + 1), s.dir());
+        }
+      }
+    }
+  }
+};
+
+TEST_F(SensedLeafTest, TheOtherLeafComesAsASecondDoorAfterASliverOrNot) {
+  int seconds = 0, slivers = 0;
+  ForEachLeaf(LeafModel(1.0, 0.5, 0.0, 0.0),
+              [&](const StreamEdge& before, const StreamEdge& e, const StreamEdge& after, int) {
+                EXPECT_EQ(e.sensed.code, map::DoorCode(map::DoorClass::k36));
+                if (before.truth == e.truth)
+                  return;  // the second leaf, or the first after a sliver
+                if (map::IsDoorCode(after.sensed.code)) {
+                  EXPECT_EQ(after.truth, e.truth);
+                  ++seconds;
+                } else {
+                  EXPECT_EQ(after.truth, e.truth);  // the sliver of the same door
+                  EXPECT_LE(after.sensed.metric_in, 36.0 + 1e-6);
+                  ++slivers;
+                }
+              });
+  EXPECT_GT(seconds, 10);
+  EXPECT_GT(slivers, 10);
+}
+
+TEST_F(SensedLeafTest, TheRestOfTheDoorGoesToTheWallBeforeOrAfter) {
+  int longer_before = 0;
+  ForEachLeaf(LeafModel(0.0, 0.0, 1.0, 0.0),
+              [&](const StreamEdge& before, const StreamEdge&, const StreamEdge&, int) {
+                ASSERT_EQ(before.sensed.code, map::kWallCode);
+                EXPECT_NEAR(before.sensed.metric_in, leaf_index_.metric(before.truth) + 36.0, 1e-6);
+                ++longer_before;
+              });
+  int longer_after = 0;
+  ForEachLeaf(LeafModel(0.0, 0.0, 0.0, 1.0),
+              [&](const StreamEdge&, const StreamEdge& e, const StreamEdge& after, int) {
+                ASSERT_EQ(after.sensed.code, map::kWallCode);
+                EXPECT_NE(after.truth, e.truth);
+                EXPECT_NEAR(after.sensed.metric_in, leaf_index_.metric(after.truth) + 36.0, 1e-6);
+                ++longer_after;
+              });
+  EXPECT_GT(longer_before, 10);
+  EXPECT_GT(longer_after, 10);
+  // Neither: the walls keep their lengths.
+  ForEachLeaf(LeafModel(0.0, 0.0, 0.0, 0.0),
+              [&](const StreamEdge& before, const StreamEdge&, const StreamEdge& after, int) {
+                EXPECT_NEAR(before.sensed.metric_in, leaf_index_.metric(before.truth), 1e-6);
+                EXPECT_NEAR(after.sensed.metric_in, leaf_index_.metric(after.truth), 1e-6);
+              });
 }
 
 TEST(DrawStartTest, StartsOnlyBesideTheRingsGivenInProportionToTheirLength) {
