@@ -269,6 +269,7 @@ void SummariseTrials(ExperimentResult& e, const StudyOptions& options) {
     return ka < kb;
   });
   e.median_trial = order[(options.trials - 1) / 2];
+  e.all = Summarise(e.runs.data(), static_cast<int>(e.runs.size()), options.config.speed_ftps);
 }
 
 }  // namespace

@@ -67,6 +67,7 @@ struct ExperimentResult {
   MethodSpec method;
   std::vector<TrialSummary> trials;
   int median_trial = 0;         // the trial reported (median of the error share, or of the edges)
+  TrialSummary all;             // every run of every trial together
   std::vector<RunResult> runs;  // trial-major, trials x runs
   const TrialSummary& median() const { return trials[median_trial]; }
 };

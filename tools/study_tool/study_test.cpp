@@ -101,6 +101,22 @@ TEST_F(StudyTest, ModeledErrorShowsInTheFigures) {
   EXPECT_GT(det->median().mean_time_s, 0.0);
 }
 
+TEST_F(StudyTest, EveryRunOfEveryTrialIsSummedUp) {
+  const DomainResult r = RunStudy(map_, Options());
+  const ExperimentResult* det = r.Find("deterministic");
+  ASSERT_NE(det, nullptr);
+  // Trials of equal runs: the whole is their mean, the wrong poses their sum.
+  EXPECT_EQ(det->all.runs, 180);
+  double incorrect = 0.0, with_error = 0.0;
+  for (const TrialSummary& t : det->trials) {
+    incorrect += t.pct_incorrect * t.runs / 100.0;
+    with_error += t.pct_with_error / 3.0;
+  }
+  EXPECT_NEAR(det->all.pct_incorrect * det->all.runs / 100.0, incorrect, 1e-9);
+  EXPECT_NEAR(det->all.pct_with_error, with_error, 1e-9);
+  EXPECT_GT(incorrect, 0.0);
+}
+
 TEST_F(StudyTest, ZeroTrialsOrRunsAreRejected) {
   StudyOptions o = Options();
   o.trials = 0;
