@@ -34,6 +34,7 @@ ObservationSettings LoadObservation(const StrictYaml& c, double keep_threshold) 
   }
   o.bayes_false_door_fit = c.Get<bool>("bayes_false_door_fit");
   o.bayes_w2_over_missed_doors = c.GetOr<bool>("bayes_w2_over_missed_doors", false);
+  o.bayes_first_part_in_noise = c.GetOr<bool>("bayes_first_part_in_noise", false);
   o.bayes_max_missed_doors = c.Get<int>("bayes_max_missed_doors", 0, 4);
   return o;
 }
@@ -169,6 +170,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes.settings.kidnap_per_edge = settings.bayes_kidnap_per_edge;
     config.bayes.settings.false_door_fit = o.bayes_false_door_fit;
     config.bayes.settings.w2_over_missed_doors = o.bayes_w2_over_missed_doors;
+    config.bayes.settings.first_part_in_noise = o.bayes_first_part_in_noise;
     config.bayes.settings.max_missed_doors = o.bayes_max_missed_doors;
     config.keep_threshold = settings.bayes_keep_threshold;
     config.calibration = o.calibration;

@@ -31,6 +31,9 @@ struct ObservationSettings {
   // The rest of a wall past a false door may run on over missed doors
   // (recovery::BayesSettings::w2_over_missed_doors; replaces the study's). Optional: off.
   bool bayes_w2_over_missed_doors = false;
+  // A wall over missed doors may end in a first part as short as the noise reads it
+  // (recovery::BayesSettings::first_part_in_noise; replaces the study's). Optional: off.
+  bool bayes_first_part_in_noise = false;
   // Missed doors one sensed wall may span (recovery::BayesSettings::max_missed_doors;
   // replaces the study's): in a row of doors the pipeline misses several in a row.
   int bayes_max_missed_doors = 2;

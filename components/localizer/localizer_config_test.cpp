@@ -171,6 +171,24 @@ TEST(LocalizerSettingsTest, TheRestOfAWallPastAFalseDoorRunsOnOnlyWhereTheSettin
       MakeLocalizerConfig(ForMap(settings, plain), plain).bayes.settings.w2_over_missed_doors);
 }
 
+TEST(LocalizerSettingsTest, AShortFirstPartPastMissedDoorsIsWeighedOnlyWhereTheSettingsSaySo) {
+  std::string text = Shipped();
+  const std::string marked_last = "    bayes_max_missed_doors: 4\n";
+  const std::size_t at = text.find(marked_last);
+  ASSERT_NE(at, std::string::npos);
+  const std::string key = "    bayes_first_part_in_noise: true\n";
+  if (text.find(key) == std::string::npos) text.insert(at + marked_last.size(), key);
+  const LocalizerSettings settings = Load(text);
+  ASSERT_TRUE(settings.on_marked_maps.has_value());
+  EXPECT_TRUE(settings.on_marked_maps->bayes_first_part_in_noise);
+  EXPECT_FALSE(settings.observation.bayes_first_part_in_noise);
+  const map::Map marked = HallWithDoor("old_window"), plain = HallWithDoor("");
+  EXPECT_TRUE(
+      MakeLocalizerConfig(ForMap(settings, marked), marked).bayes.settings.first_part_in_noise);
+  EXPECT_FALSE(
+      MakeLocalizerConfig(ForMap(settings, plain), plain).bayes.settings.first_part_in_noise);
+}
+
 TEST(LocalizerSettingsTest, TheShippedFloorsGetTheModelTheirSurveySupports) {
   const std::string maps = DataDir() + "/maps/";
   const map::Map engineering = map::LoadMap(maps + "engineering_building_3f.yaml");

@@ -556,9 +556,14 @@ void BayesLocalizer::RunOnOverMissedDoors(int from, int dir, double total, doubl
     const double before_w = total + index_.metric(d);
     const double len_w = index_.metric(w);
     const double pf = FalseDoorAt(w, Confusion::Before::kDoorMissed);
-    if (e.metric_in > before_w && e.metric_in <= before_w + len_w) {
-      // ... ending in the first part of a wall that holds a false door.
-      AddFirstPart(State(w, dir), mass * p * Missed(d) * pf, e.metric_in - before_w);
+    // ... ending in the first part of a wall that holds a false door. A false door just past
+    // the missed door leaves a first part of a few inches, which the odometry and jamb noise
+    // may read as less than nothing: within two of the wall's sigmas it is taken as none.
+    const double slack = model_.settings.first_part_in_noise
+                             ? 2.0 * std::max(1.0, model_.noise.WallSigmaIn(before_w))
+                             : 0.0;
+    if (e.metric_in > before_w - slack && e.metric_in <= before_w + len_w) {
+      AddFirstPart(State(w, dir), mass * p * Missed(d) * pf, std::max(0.0, e.metric_in - before_w));
     }
     total = before_w + len_w;
     p *= Missed(d) * (1.0 - pf);

@@ -641,6 +641,7 @@ static StudyConfig StudyConfigFromYaml(const StrictYaml& root) {
   c.bayes.angle_tolerance_deg = bayes.Get<double>("angle_tolerance_deg", 0.0, 180.0, "deg");
   c.bayes.w2_over_missed_doors = bayes.GetOr<bool>("w2_over_missed_doors", false);
   c.bayes.false_door_fit = bayes.GetOr<bool>("false_door_fit", false);
+  c.bayes.first_part_in_noise = bayes.GetOr<bool>("first_part_in_noise", false);
   bayes.Finish();
   node.Finish();
   root.Finish();

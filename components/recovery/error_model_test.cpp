@@ -358,7 +358,7 @@ TEST(StudyConfigFile, ShippedConfigLoads) {
   EXPECT_DOUBLE_EQ(c.relaxation_steps[1], 0.20);
 }
 
-TEST(StudyConfigFile, TheFalseDoorFitIsOffUnlessAsked) {
+TEST(StudyConfigFile, TheFalseDoorFitAndTheShortFirstPartAreOffUnlessAsked) {
   std::ifstream f(std::string(STICKREP_SOURCE_DIR) + "/configs/study.yaml");
   std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   EXPECT_FALSE(ParseStudyConfig(text, "study.yaml").bayes.false_door_fit);
@@ -367,6 +367,10 @@ TEST(StudyConfigFile, TheFalseDoorFitIsOffUnlessAsked) {
   ASSERT_NE(at, std::string::npos);
   text.insert(at + key.size(), "    false_door_fit: true\n");
   EXPECT_TRUE(ParseStudyConfig(text, "study.yaml").bayes.false_door_fit);
+  EXPECT_FALSE(ParseStudyConfig(text, "study.yaml").bayes.first_part_in_noise);
+  std::string in_noise = text;
+  in_noise.insert(at + key.size(), "    first_part_in_noise: true\n");
+  EXPECT_TRUE(ParseStudyConfig(in_noise, "study.yaml").bayes.first_part_in_noise);
   text.replace(text.find("false_door_fit: true"), 20, "false_door_fit: 3");
   EXPECT_THROW(ParseStudyConfig(text, "study.yaml"), InputError);
 }
