@@ -152,15 +152,22 @@ TEST(LocalizerSettingsTest, AMarkedMapGetsTheMarkedModelAndAnUnmarkedOneTheDefau
   EXPECT_EQ(config.lost_threshold, marked.bayes_lost_threshold);
 }
 
-TEST(LocalizerSettingsTest, TheRestOfAWallPastAFalseDoorRunsOnOnlyWhereTheSettingsSaySo) {
-  // The study's settings turn it on; a model whose keys do not is weighed without it.
+// The shipped settings with `key: true` among a marked map's keys (where it is not already).
+LocalizerSettings ShippedWithMarkedKey(const std::string& key) {
   std::string text = Shipped();
   const std::string marked_last = "    bayes_max_missed_doors: 4\n";
   const std::size_t at = text.find(marked_last);
-  ASSERT_NE(at, std::string::npos);
-  const bool shipped_on = text.find("    bayes_w2_over_missed_doors: true\n") != std::string::npos;
-  if (!shipped_on) text.insert(at + marked_last.size(), "    bayes_w2_over_missed_doors: true\n");
-  const LocalizerSettings settings = Load(text);
+  EXPECT_NE(at, std::string::npos);
+  const std::string line = "    " + key + ": true\n";
+  if (at != std::string::npos && text.find(line) == std::string::npos) {
+    text.insert(at + marked_last.size(), line);
+  }
+  return Load(text);
+}
+
+TEST(LocalizerSettingsTest, TheRestOfAWallPastAFalseDoorRunsOnOnlyWhereTheSettingsSaySo) {
+  // The study's settings turn it on; a model whose keys do not is weighed without it.
+  const LocalizerSettings settings = ShippedWithMarkedKey("bayes_w2_over_missed_doors");
   ASSERT_TRUE(settings.on_marked_maps.has_value());
   EXPECT_TRUE(settings.on_marked_maps->bayes_w2_over_missed_doors);
   EXPECT_FALSE(settings.observation.bayes_w2_over_missed_doors);
@@ -172,13 +179,7 @@ TEST(LocalizerSettingsTest, TheRestOfAWallPastAFalseDoorRunsOnOnlyWhereTheSettin
 }
 
 TEST(LocalizerSettingsTest, AShortFirstPartPastMissedDoorsIsWeighedOnlyWhereTheSettingsSaySo) {
-  std::string text = Shipped();
-  const std::string marked_last = "    bayes_max_missed_doors: 4\n";
-  const std::size_t at = text.find(marked_last);
-  ASSERT_NE(at, std::string::npos);
-  const std::string key = "    bayes_first_part_in_noise: true\n";
-  if (text.find(key) == std::string::npos) text.insert(at + marked_last.size(), key);
-  const LocalizerSettings settings = Load(text);
+  const LocalizerSettings settings = ShippedWithMarkedKey("bayes_first_part_in_noise");
   ASSERT_TRUE(settings.on_marked_maps.has_value());
   EXPECT_TRUE(settings.on_marked_maps->bayes_first_part_in_noise);
   EXPECT_FALSE(settings.observation.bayes_first_part_in_noise);
