@@ -88,6 +88,31 @@ class WhereAmITest : public ProcessFixture {
         timeout_s);
   }
 
+  // Keeps the robot travelling until `done`: a goal `ahead_edges` ahead of the pose held
+  // (`latest`, kept by the test's reader) and a new one each time one is reached (the robot
+  // stops at a goal, and on a wrong pose that may be anywhere). Whether `done` held within
+  // `timeout_s`.
+  bool TravelOnUntil(const std::function<bool()>& done,
+                     runtime::Writer<msgs::MissionGoalPubSubType>& goals,
+                     const std::optional<msgs::LocalizationPose>& latest, std::string& last_status,
+                     int ring_edges, int ahead_edges, double timeout_s) {
+    int sent = 0;
+    const auto send = [&] {
+      msgs::MissionGoal goal;
+      goal.goal_id("ahead" + std::to_string(++sent));
+      goal.target(TargetAhead(latest->best(), ring_edges, ahead_edges));
+      EXPECT_TRUE(SendGoalUntilTaken(goals, goal, last_status, 20.0))
+          << "goal " << goal.goal_id() << " (" << goal.target() << ") not taken: " << last_status;
+    };
+    send();
+    return SpinUntil(
+        [&] {
+          if (!done() && last_status.find("reached") != std::string::npos) send();
+          return done();
+        },
+        timeout_s);
+  }
+
   // Whether a localized pose names the true place: same ring and direction of travel, the
   // true edge or its neighbour (the robot may be crossing a node as the pose is published).
   static bool Matches(const msgs::PoseHypothesis& best, const msgs::GroundTruth& truth,
@@ -192,22 +217,51 @@ TEST_F(KidnapTest, KidnappedRobotIsNoticedAndRecoversTheNewPose) {
   StopAllAndExpectCleanExit();
 }
 
+// A wrong pose's spell on the deployed stack: from the moment the robot is known to hold a
+// wrong LOCALIZED pose (a kidnap seen in the ground truth, or a first pose that does not name
+// the true place) to the first published pose that is not LOCALIZED (LOST or RECOVERING) or
+// names the true place (corrected). Its edges are the edges the robot entered meanwhile (the
+// distinct edges of the truth after the one it held when the spell opened: the truth's edge
+// flickers at a boundary; the localizer's own count of edges sensed is not published while it
+// tracks), its feet the truth's travel.
+struct WrongPoseSpell {
+  bool open = false;
+  bool done = false;
+  long edges = 0;
+  double feet = 0.0;
+  std::string ended_by = "never";
+  double from_in = 0.0;
+  std::set<uint32_t> entered;
+
+  void Open(const msgs::GroundTruth& truth) {
+    open = true;
+    from_in = truth.distance_in();
+    entered = {truth.edge_index()};
+  }
+  void OnTruth(const msgs::GroundTruth& truth) {
+    if (open) entered.insert(truth.edge_index());
+  }
+  // A pose published while the spell is open (`right`: it is LOCALIZED and names the true
+  // place) ends it unless it still holds a wrong place.
+  void OnPose(const msgs::LocalizationPose& p, bool right, const msgs::GroundTruth& truth) {
+    if (!open || (p.status() == msgs::LOCALIZATION_LOCALIZED && !right)) return;
+    edges = std::max(0L, static_cast<long>(entered.size()) - 1);
+    feet = (truth.distance_in() - from_in) / 12.0;
+    ended_by = right ? "corrected" : p.status() == msgs::LOCALIZATION_LOST ? "LOST" : "RECOVERING";
+    open = false;
+    done = true;
+  }
+};
+
 // A batch of kidnaps over DDS: a measurement, not run by ctest unless asked for
 // (STICKREP_KIDNAP_BATCH=N, optionally STICKREP_KIDNAP_SEED=first seed, default 101). Each
 // run is a seeded start on the small map at 3x real time; 4 s after the first pose the robot
 // is carried a seeded fraction (0.1-0.9) of the ring ahead, as `stickrep-whereami
-// --kidnap-jump-random` does in process. The wrong pose's spell runs from the jump (seen in
-// the ground truth) to the first published pose that is not LOCALIZED (LOST or RECOVERING)
-// or names the true place (corrected); its edges are the edges the robot entered meanwhile
-// (the distinct edges of the truth after the one it was carried to: the truth's edge flickers
-// at a boundary; the localizer's own count of edges sensed is not published while it
-// tracks), its feet the truth's travel. Asserted for each run: the spell
-// ends and a pose is recovered again. Printed: one line per kidnap and the median, 95th
-// percentile and maximum.
+// --kidnap-jump-random` does in process; the wrong pose's spell opens at the jump. Asserted
+// for each run: the spell ends and a pose is recovered again. Printed: one line per kidnap and the
+// median, 95th percentile and maximum.
 struct DeployedKidnap {
-  long edges = 0;
-  double feet = 0.0;
-  std::string ended_by = "never";
+  WrongPoseSpell spell;
   bool recovered_right = false;
 };
 
@@ -226,9 +280,7 @@ class KidnapBatchTest : public WhereAmITest {
     std::optional<msgs::GroundTruth> truth;
     std::optional<msgs::LocalizationPose> first, again, latest;
     std::optional<msgs::GroundTruth> truth_again;
-    bool kidnapped = false, spell_open = false, spell_done = false;
-    double kidnap_distance_in = 0.0;
-    std::set<uint32_t> entered;  // the truth's edges since the kidnap
+    bool kidnapped = false;
     std::string last_status;
     runtime::Reader<msgs::GroundTruthPubSubType> truths(
         participant(), executor(), "sim/ground_truth", [&](const msgs::GroundTruth& g) {
@@ -241,10 +293,10 @@ class KidnapBatchTest : public WhereAmITest {
               (std::hypot(g.pose().x_in() - truth->pose().x_in(),
                           g.pose().y_in() - truth->pose().y_in()) > 120.0 ||
                std::min(de, kSmallMapEdges - de) > 2)) {
-            kidnapped = spell_open = true;
-            kidnap_distance_in = g.distance_in();
+            kidnapped = true;
+            k.spell.Open(g);
           }
-          if (spell_open) entered.insert(g.edge_index());
+          k.spell.OnTruth(g);
           truth = g;
         });
     runtime::Reader<msgs::LocalizationPosePubSubType> poses(
@@ -252,17 +304,10 @@ class KidnapBatchTest : public WhereAmITest {
           const bool localized = p.status() == msgs::LOCALIZATION_LOCALIZED;
           if (localized && !first) first = p;
           if (localized) latest = p;
-          if (spell_open) {
-            const bool right = localized && Matches(p.best(), *truth, truth->forward_in_ring());
-            if (!localized || right) {
-              k.edges = std::max(0L, static_cast<long>(entered.size()) - 1);
-              k.feet = (truth->distance_in() - kidnap_distance_in) / 12.0;
-              k.ended_by = right ? "corrected"
-                                 : p.status() == msgs::LOCALIZATION_LOST ? "LOST" : "RECOVERING";
-              spell_open = false;
-              spell_done = true;
-            }
-          } else if (spell_done && localized && !again) {
+          if (k.spell.open) {
+            k.spell.OnPose(p, localized && Matches(p.best(), *truth, truth->forward_in_ring()),
+                           *truth);
+          } else if (k.spell.done && localized && !again) {
             again = p;
             truth_again = truth;
           }
@@ -277,24 +322,9 @@ class KidnapBatchTest : public WhereAmITest {
                       {"kidnap_jump_in", std::to_string(jump_in)}});
     EXPECT_TRUE(SpinUntil([&] { return first.has_value(); }, kStepBoundS)) << Outputs();
     if (!first) return k;
-    // A goal ahead of the pose held keeps the robot travelling through and after the kidnap;
-    // a new one when it is reached (on a wrong pose, the robot stops).
-    int goals_sent = 0;
-    const auto send_goal = [&] {
-      msgs::MissionGoal goal;
-      const std::string id = "far" + std::to_string(++goals_sent);
-      goal.goal_id(id);
-      goal.target(TargetAhead(latest->best()));
-      EXPECT_TRUE(SendGoalUntilTaken(goals, goal, last_status, 20.0))
-          << "seed " << seed << ": goal " << id << " not taken: " << last_status;
-    };
-    send_goal();
-    EXPECT_TRUE(SpinUntil(
-        [&] {
-          if (!spell_done && last_status.find("reached") != std::string::npos) send_goal();
-          return spell_done;
-        },
-        kStepBoundS))
+    // Goals a third of the ring ahead keep the robot travelling through and after the kidnap.
+    EXPECT_TRUE(TravelOnUntil([&] { return k.spell.done; }, goals, latest, last_status,
+                              kSmallMapEdges, kSmallMapEdges / 3, kStepBoundS))
         << "seed " << seed << ": the wrong pose was never given up; " << last_status << "\n"
         << Outputs();
     EXPECT_TRUE(SpinUntil([&] { return again.has_value(); }, kStepBoundS))
@@ -326,15 +356,16 @@ TEST_F(KidnapBatchTest, DeployedKidnapsAreGivenUpAndRecovered) {
     std::mt19937_64 rng(static_cast<uint64_t>(seed));
     const double jump_in = std::uniform_real_distribution<double>(0.1, 0.9)(rng) * ring_in;
     const DeployedKidnap k = RunOne(seed, jump_in);
-    std::printf("[kidnap batch] seed %d jump %.0f in: wrong pose LOCALIZED over %ld edges, "
-                "%.1f ft, ended by %s; recovered %s\n",
-                seed, jump_in, k.edges, k.feet, k.ended_by.c_str(),
-                k.recovered_right ? "right" : "wrong or not");
+    std::printf(
+        "[kidnap batch] seed %d jump %.0f in: wrong pose LOCALIZED over %ld edges, "
+        "%.1f ft, ended by %s; recovered %s\n",
+        seed, jump_in, k.spell.edges, k.spell.feet, k.spell.ended_by.c_str(),
+        k.recovered_right ? "right" : "wrong or not");
     std::fflush(stdout);
-    if (k.ended_by == "never") continue;
-    edges.push_back(static_cast<double>(k.edges));
-    feet.push_back(k.feet);
-    ended_by[k.ended_by]++;
+    if (!k.spell.done) continue;
+    edges.push_back(static_cast<double>(k.spell.edges));
+    feet.push_back(k.spell.feet);
+    ended_by[k.spell.ended_by]++;
     right += k.recovered_right ? 1 : 0;
   }
   ASSERT_FALSE(edges.empty());
@@ -374,21 +405,18 @@ class RealBuildingTest : public WhereAmITest {
 
   void RecoversTheTruePose(const std::string& map_name, const std::string& ring,
                            const std::string& seed, int ring_edges) {
-    std::optional<msgs::GroundTruth> truth;
+    std::optional<msgs::GroundTruth> truth, at_first, at_again;
     std::optional<msgs::LocalizationPose> first, again, latest;
-    std::optional<msgs::GroundTruth> at_first, at_again;
-    bool spell_open = false, spell_done = false;
-    std::string spell_ended_by;
-    double spell_from_in = 0.0, spell_ft = 0.0;
-    std::set<uint32_t> entered;  // the truth's edges while a wrong pose is held
+    WrongPoseSpell spell;
     std::string last_status;
     const auto right = [&](const msgs::LocalizationPose& p) {
-      return Matches(p.best(), *truth, truth->forward_in_ring(), ring_edges);
+      return p.status() == msgs::LOCALIZATION_LOCALIZED &&
+             Matches(p.best(), *truth, truth->forward_in_ring(), ring_edges);
     };
     runtime::Reader<msgs::GroundTruthPubSubType> truths(
         participant(), executor(), "sim/ground_truth", [&](const msgs::GroundTruth& g) {
           truth = g;
-          if (spell_open) entered.insert(g.edge_index());
+          spell.OnTruth(g);
         });
     runtime::Reader<msgs::LocalizationPosePubSubType> poses(
         participant(), executor(), "localization/pose", [&](const msgs::LocalizationPose& p) {
@@ -398,19 +426,10 @@ class RealBuildingTest : public WhereAmITest {
           if (localized && !first) {
             first = p;
             at_first = truth;
-            spell_open = !right(p);
-            spell_from_in = truth->distance_in();
-            if (spell_open) entered.insert(truth->edge_index());
-          } else if (spell_open && (!localized || right(p))) {
-            spell_open = false;
-            spell_done = true;
-            spell_ended_by = localized ? "corrected" : "given up";
-            spell_ft = (truth->distance_in() - spell_from_in) / 12.0;
-            if (localized) {
-              again = p;
-              at_again = truth;
-            }
-          } else if (spell_done && localized && !again) {
+            if (!right(p)) spell.Open(*truth);
+          } else if (spell.open) {
+            spell.OnPose(p, right(p), *truth);
+          } else if (spell.done && localized && !again) {
             again = p;
             at_again = truth;
           }
@@ -428,45 +447,31 @@ class RealBuildingTest : public WhereAmITest {
     StartStackOn(system, map_name,
                  {{"seed", seed}, {"ring_id", ring}, {"real_time_factor", "1"}});
     ASSERT_TRUE(SpinUntil([&] { return first.has_value(); }, 600.0)) << Outputs();
-    const auto named = [&](const msgs::LocalizationPose& p, const msgs::GroundTruth& t) {
-      return "localized on ring " + p.best().ring_id() + " edge " +
-             std::to_string(p.best().edge_index()) + (p.best().forward() ? " fwd" : " back") +
-             ", truth ring " + t.ring_id() + " edge " + std::to_string(t.edge_index()) +
-             (t.forward_in_ring() ? " fwd" : " back");
-    };
-    if (spell_open) {
+    if (spell.open) {
       std::printf("[real building] the first pose is wrong (%s): sending the robot on\n",
-                  named(*first, *at_first).c_str());
+                  Named(*first, *at_first).c_str());
       std::fflush(stdout);
-      // Goals ahead of the pose held keep the robot travelling; a new one when it is reached
-      // (the robot stops there) while the wrong pose is still held.
-      int goals_sent = 0;
-      const auto send_goal = [&] {
-        msgs::MissionGoal goal;
-        goal.goal_id("ahead" + std::to_string(++goals_sent));
-        goal.target(TargetAhead(latest->best(), ring_edges, kGoalAheadEdges));
-        return SendGoalUntilTaken(goals, goal, last_status, 20.0);
-      };
-      ASSERT_TRUE(send_goal()) << last_status << "\n" << Outputs();
-      ASSERT_TRUE(SpinUntil(
-          [&] {
-            if (spell_open && last_status.find("reached") != std::string::npos) send_goal();
-            return spell_done;
-          },
-          600.0))
+      ASSERT_TRUE(TravelOnUntil([&] { return spell.done; }, goals, latest, last_status, ring_edges,
+                                kGoalAheadEdges, 600.0))
           << "the wrong pose was never given up; " << last_status << "\n"
           << Outputs();
-      const long spell_edges = static_cast<long>(entered.size()) - 1;
-      std::printf("[real building] the wrong pose was %s after %ld edges, %.1f ft\n",
-                  spell_ended_by.c_str(), spell_edges, spell_ft);
-      EXPECT_LE(spell_edges, kWrongSpellEdges) << Outputs();
+      std::printf("[real building] the wrong pose ended (%s) after %ld edges, %.1f ft\n",
+                  spell.ended_by.c_str(), spell.edges, spell.feet);
+      EXPECT_LE(spell.edges, kWrongSpellEdges) << Outputs();
       ASSERT_TRUE(SpinUntil([&] { return again.has_value(); }, 600.0)) << Outputs();
       EXPECT_TRUE(Matches(again->best(), *at_again, at_again->forward_in_ring(), ring_edges))
-          << "after the wrong pose was given up, " << named(*again, *at_again) << "\n"
+          << "after the wrong pose, " << Named(*again, *at_again) << "\n"
           << Outputs();
     }
     EXPECT_EQ(truth->collisions(), 0u);
     StopAllAndExpectCleanExit();
+  }
+
+  static std::string Named(const msgs::LocalizationPose& p, const msgs::GroundTruth& t) {
+    return "localized on ring " + p.best().ring_id() + " edge " +
+           std::to_string(p.best().edge_index()) + (p.best().forward() ? " fwd" : " back") +
+           ", truth ring " + t.ring_id() + " edge " + std::to_string(t.edge_index()) +
+           (t.forward_in_ring() ? " fwd" : " back");
   }
 };
 
