@@ -244,7 +244,7 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
     // Prior: the start is uniform along the walls, so edge g holds it with len / total.
     const double prior = len / total_length_in_;
     double pn = 0.0, pi1 = 0.0, pi2 = 0.0;
-    double chained[2] = {0.0, 0.0};  // per direction, see below
+    ChainedPrior chained[2];  // per direction, see below
     if (door) {
       if (map::IsDoorCode(code)) {
         const int k = code - 1, c = e.code - 1;
@@ -280,13 +280,17 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
     }
     for (const int dir : {+1, -1}) {
       const int s = State(g, dir);
-      n_[s] += weight * (chained[dir > 0 ? 0 : 1] + pn + eps * unit * prior);
-      if (pi1 > 0.0 && weight * pi1 >= i1_[s]) {
-        c1_[s] = e.metric_in;
+      const ChainedPrior& ch = chained[dir > 0 ? 0 : 1];
+      n_[s] += weight * (ch.end + pn + eps * unit * prior);
+      // W1 is known only from below: the seen part of the wall for a start in it, less for
+      // a run into it that began behind. One W1 is kept per state, the larger share's.
+      const double add1 = weight * (pi1 + ch.first_part);
+      if (add1 > 0.0 && add1 >= i1_[s]) {
+        c1_[s] = ch.first_part > pi1 ? ch.w1_min_in : e.metric_in;
         lb1_[s] = 1;
         fd1_[s] = 0;
       }
-      i1_[s] += weight * pi1;
+      i1_[s] += add1;
       if (pi2 > 0.0 && weight * pi2 >= i2_[s]) {
         c2_[s] = door ? e.metric_in : 0.0;
         lb2_[s] = 1;
@@ -297,31 +301,52 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
   }
 }
 
-double BayesLocalizer::PriorOverMissedDoors(int g, int dir, double sigma,
-                                            const map::SensedEdge& e) const {
+BayesLocalizer::ChainedPrior BayesLocalizer::PriorOverMissedDoors(int g, int dir, double sigma,
+                                                                  const map::SensedEdge& e) const {
+  ChainedPrior out;
   const double len = index_.metric(g);
-  double chain = len, p = 1.0;
+  const double x = e.metric_in;
+  // Wall g is entered past a missed door: it holds a false door at the rate after one.
+  const double pf_g = FalseDoorAt(g, Confusion::Before::kDoorMissed);
+  double near = 0.0;  // how far behind g's start the element considered ends
+  double p = 1.0;     // the doors between missed, the walls between without a false door
+  // The start was inside the element `length` long that ends `near` behind g's start.
+  const auto start_in = [&](double length) {
+    const double far = near + length;
+    // The sensed wall ended at g's far end: x = t + len for a start t behind g's start.
+    if (x >= near + len - sigma && x <= far + len + sigma) {
+      out.end += p * (1.0 - pf_g) / total_length_in_;
+    }
+    // ... or in g's first part W1 = x - t, before a false door (uniform over the wall).
+    const double lo = std::max(near, x - len), hi = std::min(far, x);
+    if (pf_g > 0.0 && hi > lo) {
+      const double w1_min = std::max(0.0, x - far);
+      const double mass =
+          p * pf_g * (hi - lo) / (len * total_length_in_) * RoomForFalseDoor(len, w1_min);
+      // W1 is known only from below, over every element the start may lie in.
+      out.w1_min_in = out.first_part > 0.0 ? std::min(out.w1_min_in, w1_min) : w1_min;
+      out.first_part += mass;
+    }
+    near = far;
+  };
   int cur = g;
-  double extra = 0.0;
   for (int m = 0; m < model_.settings.max_missed_doors; ++m) {
     const int d = index_.Step(cur, -dir);
     if (d < 0 || !map::IsDoorCode(index_.code(d))) break;
     const double a_d = dir > 0 ? index_.angle_end(d) : index_.angle_start(d);
     if (!Coplanar(a_d)) break;
     p *= Missed(d);
-    chain += index_.metric(d);
-    // Started inside the missed door itself.
-    if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
+    start_in(index_.metric(d));  // inside the missed door itself
     const int w = index_.Step(d, -dir);
     if (w < 0 || index_.code(w) != map::kWallCode) break;
     const double a_w = dir > 0 ? index_.angle_end(w) : index_.angle_start(w);
     if (!Coplanar(a_w)) break;
+    // The wall before the missed door holds no false door in the part seen.
     p *= 1.0 - FalseDoorAt(w);
-    chain += index_.metric(w);
-    if (e.metric_in <= chain + sigma) extra += p / total_length_in_;
+    start_in(index_.metric(w));
     cur = w;
   }
-  return extra;
+  return out;
 }
 
 void BayesLocalizer::Next(const map::SensedEdge& e) {
@@ -598,11 +623,18 @@ bool BayesLocalizer::FlatDoorThenWall(int cur, int dir, int* door, int* wall) co
 
 void BayesLocalizer::NextSecondPartOverMissedDoors(int s, double p2, double angle,
                                                    const map::SensedEdge& e) {
-  if (!model_.settings.w2_over_missed_doors || lb2_[s]) return;  // where W2 begins: unknown
+  if (!model_.settings.w2_over_missed_doors) return;
   const int dir = s % 2 == 0 ? +1 : -1;
   // As SecondPartDensity: the false door's two jambs and its width land on the merged wall.
-  RunOnOverMissedDoors(s / 2, dir, std::max(0.0, index_.metric(s / 2) - c2_[s]), p2 * angle, 1.0,
-                       FalseDoorVar(s), e);
+  double rest = std::max(0.0, index_.metric(s / 2) - c2_[s]);
+  double var = FalseDoorVar(s);
+  if (lb2_[s]) {
+    // Where W2 begins is known only from below (a first edge seen in part): W2 is anywhere
+    // up to the rest, taken as normal with the uniform's mean and variance.
+    var += rest * rest / 12.0;
+    rest *= 0.5;
+  }
+  RunOnOverMissedDoors(s / 2, dir, rest, p2 * angle, 1.0, var, e);
 }
 
 void BayesLocalizer::NextFromFirstPart(int s, double p1, const map::SensedEdge& e) {

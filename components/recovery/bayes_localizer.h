@@ -132,8 +132,17 @@ class BayesLocalizer {
   // Adds `weight` times the belief a first sensed edge `e` gives (a start anywhere).
   void AddPrior(const map::SensedEdge& e, double weight);
   // AddPrior()'s share for a partial wall `e` seen in wall g that began earlier, behind g
-  // in direction `dir`, and ran over missed doors into g.
-  double PriorOverMissedDoors(int g, int dir, double sigma, const map::SensedEdge& e) const;
+  // in direction `dir`, and ran over missed doors into g: the start lies in the missed door
+  // or the wall behind it that puts the wall's end where it was sensed, at g's end (`end`)
+  // or in g's first part before a false door (`first_part`, whose W1 is at least
+  // `w1_min_in`). A start is uniform along the walls, so each element the start may lie in
+  // gives the density of the sensed length its share of the map's length.
+  struct ChainedPrior {
+    double end = 0.0;
+    double first_part = 0.0;
+    double w1_min_in = 0.0;
+  };
+  ChainedPrior PriorOverMissedDoors(int g, int dir, double sigma, const map::SensedEdge& e) const;
   void Next(const map::SensedEdge& e);
   // Next() for the mass of one state, phase by phase: from N(g), from I1(s), from I2(s).
   // NextFromEnd adds the mass that leaves the ring through an open end to `leaving`.
