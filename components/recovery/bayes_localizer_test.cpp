@@ -429,8 +429,9 @@ TEST(BayesLocalizerWallTest, AFirstPartReadShorterThanNothingIsStillAFirstPart) 
   EXPECT_GT(AFalseDoorJustPastAMissedDoor(true), 0.05);
 }
 
-// The first sensed wall is seen from the start point on; where the pipeline missed the door
-// behind the start, the wall began in that door or in the wall before it (AddPrior).
+// The first sensed wall is seen from the start point on; where the pipeline missed a door
+// between the start and the wall, the sensed wall began in that door or in the wall before
+// it (AddPrior).
 class BayesLocalizerFirstWallTest : public ::testing::Test {
  protected:
   BayesLocalizer Make(const ErrorModel& em) {
