@@ -150,7 +150,7 @@ bool Localizer::Track(double odometer_in, const std::vector<map::SensedEdge>& ed
 bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges,
                                 bool silence_changed) {
   if (edges.empty() && !silence_changed) {
-    PublishTracked(posterior_, tracker_.message());
+    PublishTracked(posterior_, TrackerNote());
     return false;
   }
   if (!edges.empty()) ExtendBayes(edges);
@@ -160,14 +160,14 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
   const bool holds =
       (tracked >= config_.keep_threshold || near) && best.probability >= config_.keep_threshold;
   if (edges.empty() && holds) {
-    PublishTracked(posterior_, tracker_.message());
+    PublishTracked(posterior_, TrackerNote());
     return false;
   }
   if (holds) {
     // The place holds. The tracker dead-reckons between edges (through a corner's turn, or
     // after a reversal, it can slip an edge or lose its anchor): it is put where the filter
     // places the robot after this edge.
-    std::string message = tracker_.message();
+    std::string message = TrackerNote();
     if (tracker_.status() != TrackStatus::kTracking || !TrackerAtFilterPlace(best)) {
       Rebuild(odometer_in, estimate_.message);
       StartTracking(odometer_in);
@@ -246,6 +246,17 @@ void Localizer::LeaveLocalized(double odometer_in, Status status, const std::str
 
 double Localizer::Confidence(double posterior) const {
   return bayes_ ? config_.calibration.Calibrated(posterior) : posterior;
+}
+
+std::string Localizer::TrackerNote() const {
+  // Under the filter the tracker's own LOST (its anticipated doors stopped coming) only
+  // loses its anchor along the edge: the filter decides at the next edge whether the place
+  // holds, and the status stays LOCALIZED until then. The note must not say LOST.
+  if (tracker_.status() != TrackStatus::kLost) return tracker_.message();
+  return fmt::format(
+      "{} anticipated edges in a row not seen: the place is held until the filter weighs the "
+      "next edge",
+      tracker_.consecutive_misses());
 }
 
 void Localizer::PublishTracked(double posterior, const std::string& message) {

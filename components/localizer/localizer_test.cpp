@@ -636,6 +636,25 @@ TEST(LocalizerTest, APoseDeclaredOnTheSilenceIsTestedFromThePlaceTheFilterHolds)
   EXPECT_GT(declared_on_silence, 0);
 }
 
+TEST(LocalizerTest, AHeldPoseWhoseAnticipatedDoorsDoNotComeIsNeverPublishedAsLocalizedAndLost) {
+  // Under the filter the tracker's own LOST (three anticipated doors not seen) loses only its
+  // anchor: the pose stays LOCALIZED until the filter weighs the next edge, and what is
+  // published with it must not say LOST.
+  const map::Map map = MakeMap(DistinctHall());
+  Localizer loc(map, HoldingBayesConfig(map, 1e-3, 1));
+  DriveSegment(map, loc, 10.0, 0.0, 1400.0);
+  ASSERT_EQ(loc.estimate().status, Status::kLocalized);
+  int anchor_lost = 0;
+  for (double odo = 1406.24; odo <= 2400.0; odo += 6.24) {
+    DriveSegment(map, loc, 10.0 + odo, odo, odo, /*view_in=*/-1.0);  // no door is seen
+    const PoseEstimate& e = loc.estimate();
+    if (e.status != Status::kLocalized) continue;
+    EXPECT_EQ(e.message.find("LOST"), std::string::npos) << "odometer " << odo << ": " << e.message;
+    if (e.message.find("anticipated edges in a row not seen") != std::string::npos) ++anchor_lost;
+  }
+  EXPECT_GT(anchor_lost, 0) << loc.estimate().message;
+}
+
 TEST(LocalizerTest, APoseGivenUpIsLostOnlyWhenTheFiltersBeliefInItIsUnderTheLostThreshold) {
   const map::Map map = MakeMap(DistinctHall());
   // The same kidnap, the same evidence: given up RECOVERING under a low LOST threshold...
