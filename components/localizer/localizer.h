@@ -141,10 +141,10 @@ class Localizer {
   void ResetRecovery();
   bool TrackWithFilter(double odometer_in, const std::vector<map::SensedEdge>& edges,
                        bool silence_changed);
-  // The tracked pose as the estimate: LOCALIZED with the filter's `posterior` (calibrated
-  // as the confidence).
   // The tracker's message for a pose the filter holds (never its own LOST).
   std::string TrackerNote() const;
+  // The tracked pose as the estimate: LOCALIZED with the filter's `posterior` (calibrated
+  // as the confidence).
   void PublishTracked(double posterior, const std::string& message);
   double Confidence(double posterior) const;
   // The edge the filter's place (g, dir) puts the robot in: the one after g, g sensed last.
