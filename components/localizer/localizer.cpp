@@ -214,6 +214,7 @@ void Localizer::ConfirmLoss() {
   // there, is up to that many edges on (fewer where the filter takes some for false doors).
   const double belief =
       BeliefNear(given_up_->ring, given_up_->edge, given_up_->dir, recovery_edges_);
+  given_up_->belief_on = belief;
   if (belief >= config_.lost_threshold) {
     loss_pending_ = false;
     estimate_.message += fmt::format(
@@ -224,6 +225,16 @@ void Localizer::ConfirmLoss() {
   }
   if (recovery_edges_ < config_.lost_confirm_edges) return;
   loss_pending_ = false;
+  if (belief > given_up_->belief) {
+    // The edges since were for the place, not against it: the misreads that sank it were
+    // its own (the same doors missed pass after pass), and a kidnapped robot's edges do not
+    // raise the old place. Only evidence against it before and after says LOST.
+    estimate_.message += fmt::format(
+        "; the edges since the pose was given up are for it (belief {:.2g}, up from {:.2g}): "
+        "no LOST",
+        belief, given_up_->belief);
+    return;
+  }
   losses_++;
   given_up_->lost = true;
   estimate_.status = Status::kLost;

@@ -1,11 +1,11 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-#include <vector>
-
+#include <limits>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "localizer/confidence_calibration.h"
 #include "localizer/edge_assembler.h"
@@ -72,7 +72,8 @@ struct LocalizerConfig {
   double keep_threshold = 0.9;
   double lost_threshold = 0.05;
   // Further sensed edges after which the belief in a pose given up must still be under
-  // lost_threshold before LOST is said (RECOVERING meanwhile); 0: LOST at once.
+  // lost_threshold, and no higher than when it was given up (those edges against it too),
+  // before LOST is said (RECOVERING meanwhile); 0: LOST at once.
   int lost_confirm_edges = 0;
   // Once localized, what has not been sensed since the last edge is weighed too, as in
   // recovery (a door the held place has by now that did not come): it can give the pose up
@@ -105,8 +106,8 @@ class Localizer {
   std::uint64_t losses() const { return losses_; }
   std::uint64_t edges_total() const { return edges_total_; }
   // The last LOCALIZED pose given up: where, the filter's belief in it then, and whether it
-  // was declared LOST (belief under lost_threshold, and still under it lost_confirm_edges
-  // edges on) rather than RECOVERING.
+  // was declared LOST (belief under lost_threshold, and still under it and not risen
+  // lost_confirm_edges edges on) rather than RECOVERING.
   struct GivenUp {
     int ring = 0;
     int edge = 0;
@@ -114,6 +115,10 @@ class Localizer {
     double belief = 0.0;
     bool lost = false;
     std::uint64_t serial = 0;  // 1 for the first pose given up, and so on
+    // The belief in it, carried on by the edges sensed since, when LOST was last weighed
+    // again (NaN if it never was: LOST said at once, or RECOVERING with the belief over
+    // lost_threshold).
+    double belief_on = std::numeric_limits<double>::quiet_NaN();
   };
   const std::optional<GivenUp>& given_up() const { return given_up_; }
   // The edges sensed since the current recovery (or the last restart) began, in order.
@@ -163,7 +168,8 @@ class Localizer {
   // been given, missed or not yet decided).
   double BeliefSinceLastEdge() const;
   // A pose given up with the evidence against it: LOST once `lost_confirm_edges` further
-  // edges keep the belief in it (moved on by the edges sensed) under lost_threshold.
+  // edges keep the belief in it (moved on by the edges sensed) under lost_threshold and
+  // have not raised it.
   void ConfirmLoss();
   // The pose is given up: LOST, and a new recovery starts from nothing.
   void Lose(const std::string& why);

@@ -124,11 +124,13 @@ struct RunResult {
   std::vector<WrongSpell> wrong_localized;
   // Every LOCALIZED pose the filter gave up, once first localized (Localizer::GivenUp):
   // whether it was right, the wrong pose a kidnap left or another wrong pose; the filter's
-  // belief in it when given up, and whether LOST was said (rather than RECOVERING).
+  // belief in it when given up, and whether LOST was said (rather than RECOVERING); where
+  // LOST was weighed again edges on, the belief in it then (Localizer::GivenUp::belief_on).
   struct GivenUpPose {
     std::string pose;  // "right", "kidnap" or "wrong"
     double belief = 0.0;
     bool lost = false;
+    std::optional<double> belief_on;
   };
   std::vector<GivenUpPose> given_up;
   std::vector<ConfidenceSample> confidences;

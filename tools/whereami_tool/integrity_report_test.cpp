@@ -69,10 +69,12 @@ TEST(IntegrityReportTest, EdgesSensedBeforeTheKidnapAreNotCountedInItsSpell) {
 TEST(IntegrityReportTest, PosesGivenUpAreGroupedByWhatTheyWereWithTheBeliefThen) {
   RunResult a;
   a.first = virtual_robot::PoseCheck{};
-  a.given_up = {{"right", 0.5, false}, {"kidnap", 2e-5, true}, {"right", 0.0027, false}};
+  a.given_up = {{"right", 0.5, false, std::nullopt},
+                {"kidnap", 2e-5, true, 1e-6},
+                {"right", 0.0027, false, 0.004}};
   RunResult b;
   b.first = virtual_robot::PoseCheck{};
-  b.given_up = {{"kidnap", 0.3, false}, {"right", 0.8, false}};
+  b.given_up = {{"kidnap", 0.3, false, std::nullopt}, {"right", 0.8, false, std::nullopt}};
   b.false_losts = 1;
   const IntegritySummary s = SummarizeIntegrity({a, b});
   ASSERT_EQ(s.given_up.size(), 2u);  // no wrong pose given up: no row

@@ -398,7 +398,9 @@ void PrintRun(const RunResult& r, const RunSetup& setup, const ToolOptions& opti
 nlohmann::json RunJson(const RunResult& r) {
   nlohmann::json given_up = nlohmann::json::array();
   for (const RunResult::GivenUpPose& g : r.given_up) {
-    given_up.push_back({{"pose", g.pose}, {"belief", g.belief}, {"lost", g.lost}});
+    nlohmann::json j = {{"pose", g.pose}, {"belief", g.belief}, {"lost", g.lost}};
+    if (g.belief_on) j["belief_on"] = *g.belief_on;
+    given_up.push_back(std::move(j));
   }
   return {
       {"seed", r.seed},
