@@ -226,9 +226,9 @@ void Localizer::ConfirmLoss() {
   if (recovery_edges_ < config_.lost_confirm_edges) return;
   loss_pending_ = false;
   if (belief > given_up_->belief) {
-    // The edges since were for the place, not against it: the misreads that sank it were
-    // its own (the same doors missed pass after pass), and a kidnapped robot's edges do not
-    // raise the old place. Only evidence against it before and after says LOST.
+    // The edges since were for the place, not against it: what sank it was a run of
+    // misreads (the same doors missed pass after pass), or a kidnap whose next edges the
+    // old place has too. LOST needs the evidence against the place before and after.
     estimate_.message += fmt::format(
         "; the edges since the pose was given up are for it (belief {:.2g}, up from {:.2g}): "
         "no LOST",
