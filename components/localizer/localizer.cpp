@@ -188,8 +188,9 @@ bool Localizer::TrackWithFilter(double odometer_in, const std::vector<map::Sense
     const bool against = tracked < config_.lost_threshold;
     const bool lost = against && config_.lost_confirm_edges == 0 && !edges.empty();
     const TrackedPose p = tracker_.pose();
-    given_up_ = GivenUp{p.ring, p.edge, p.dir, tracked, lost,
-                        (given_up_ ? given_up_->serial : 0) + 1};
+    given_up_ =
+        GivenUp{p.ring,      p.edge, p.dir, tracked, lost, (given_up_ ? given_up_->serial : 0) + 1,
+                std::nullopt};
     LeaveLocalized(
         odometer_in, lost ? Status::kLost : Status::kRecovering,
         fmt::format(

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -116,9 +115,9 @@ class Localizer {
     bool lost = false;
     std::uint64_t serial = 0;  // 1 for the first pose given up, and so on
     // The belief in it, carried on by the edges sensed since, when LOST was last weighed
-    // again (NaN if it never was: LOST said at once, or RECOVERING with the belief over
+    // again (none if it never was: LOST said at once, or RECOVERING with the belief over
     // lost_threshold).
-    double belief_on = std::numeric_limits<double>::quiet_NaN();
+    std::optional<double> belief_on;
   };
   const std::optional<GivenUp>& given_up() const { return given_up_; }
   // The edges sensed since the current recovery (or the last restart) began, in order.

@@ -795,9 +795,9 @@ TEST(LocalizerTest, APoseSunkByTheSameDoorsMissedPassAfterPassIsNotLostWhenTheNe
   EXPECT_EQ(g.serial, 1u);
   // Given up under the LOST threshold, and one edge on still under it, but higher.
   EXPECT_LT(g.belief, 0.89);
-  ASSERT_FALSE(std::isnan(g.belief_on));
-  EXPECT_LT(g.belief_on, 0.89);
-  EXPECT_GT(g.belief_on, g.belief);
+  ASSERT_TRUE(g.belief_on.has_value());
+  EXPECT_LT(*g.belief_on, 0.89);
+  EXPECT_GT(*g.belief_on, g.belief);
   EXPECT_FALSE(g.lost);
   EXPECT_EQ(loc.losses(), 0u);
   EXPECT_EQ(std::count(after.begin(), after.end(), Status::kLost), 0);

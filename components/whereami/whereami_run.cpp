@@ -288,7 +288,7 @@ void Run::WatchGivenUp(bool left_right_pose) {
     // LOST may be said for it edges after it was given up.
     if (!result_.given_up.empty()) {
       result_.given_up.back().lost = g->lost;
-      if (!std::isnan(g->belief_on)) result_.given_up.back().belief_on = g->belief_on;
+      result_.given_up.back().belief_on = g->belief_on;
     }
     return;
   }
