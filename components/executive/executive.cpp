@@ -3,10 +3,7 @@
 namespace stickrep::executive {
 
 Executive::Executive(const map::Map& map, MissionConfig config)
-    : map_(map),
-      mission_(config),
-      planner_(map),
-      travel_direction_(config.travel_direction) {}
+    : mission_(config), planner_(map), travel_direction_(config.travel_direction) {}
 
 void Executive::OnLocalized(const MapPose& pose, const std::string& where) {
   pose_ = pose;

@@ -12,7 +12,8 @@ namespace stickrep::executive {
 // The mission executive's logic without middleware: the mission state machine, the pose it
 // last heard of, and goals turned into travel along the rings. The executive process feeds
 // it heartbeats, poses, goals, locomotion's state and odometry; the closed-loop run does the
-// same in simulated time. Holds a reference to `map`, which must outlive it.
+// same in simulated time. Its route planner holds a reference to `map`, which must outlive
+// it.
 class Executive {
  public:
   Executive(const map::Map& map, MissionConfig config);
@@ -30,7 +31,6 @@ class Executive {
   std::optional<std::string> OnGoal(const std::string& goal_id, const std::string& target);
 
  private:
-  const map::Map& map_;
   Mission mission_;
   RoutePlanner planner_;
   int travel_direction_ = +1;
