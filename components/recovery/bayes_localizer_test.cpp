@@ -660,6 +660,45 @@ map::Map CorridorWithARowOfDoubleDoors() {
                                  {0, 11});
 }
 
+// The belief in door 9 forwards of the row of double doors after the walk from its first
+// corner: 120 in of wall, door 1 read, then one sensed wall over doors 3, 5 and 7, all missed
+// (edges 2 to 8 end to end), and door 9 read. The live outlier share; the row's doors missed
+// as often as the live pipeline misses double doors in a row.
+double TruthOverThreeMissedDoors(int max_missed_doors) {
+  const map::Map map = CorridorWithARowOfDoubleDoors();
+  const map::MatchIndex index(map);
+  ErrorModel em = ErrorModel::Paper();
+  for (DoorClass k : {DoorClass::k36, DoorClass::k36_36, DoorClass::k30_30}) {
+    em.by_class[k] = {0.40, 0.0, 0.60};
+  }
+  em.Validate();
+  BayesModel m;
+  m.confusion = Resolve(em, index);
+  m.noise = SensingNoise{};
+  m.settings.threshold = 0.99;
+  m.settings.outlier = 0.01;
+  m.settings.max_missed_doors = max_missed_doors;
+  BayesLocalizer b(index, m);
+  double wall_in = 0.0;
+  for (int g = 2; g <= 8; ++g) wall_in += index.metric(g);
+  for (const map::SensedEdge& e :
+       {Wall(120), Door(DoorClass::k36), Wall(wall_in), Door(DoorClass::k40)}) {
+    b.Add(e);
+  }
+  return b.PoseProbability(9, +1);
+}
+
+TEST(BayesLocalizerRowTest, AWallOverThreeMissedDoorsNeedsTheFilterToAllowThree) {
+  // Allowing two, no path of the model reaches door 9 through the one long wall: the truth
+  // keeps only what the outlier spreads. Allowing three or more, its own path holds it.
+  const double two = TruthOverThreeMissedDoors(2);
+  const double three = TruthOverThreeMissedDoors(3);
+  const double four = TruthOverThreeMissedDoors(4);
+  EXPECT_LT(two, 0.01) << "three " << three;
+  EXPECT_GT(three, 0.5) << "two " << two;
+  EXPECT_NEAR(four, three, 1e-9);
+}
+
 // The paper's rates, with the double doors of a row missed and its panels read as doors as
 // often as the live pipeline does (configs/error_model_rows.yaml).
 ErrorModel RowOfDoubleDoorsModel() {
