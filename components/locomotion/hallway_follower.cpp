@@ -112,6 +112,21 @@ double SideWallsHeadedIntoIn(const HallwayEstimate& walls, double travel_rad,
   return free_in;
 }
 
+// An echo off the front sensors' fan, `off_rad` from the travel direction at `range_in`
+// from its transducer's face, that no fitted side wall explains (a convex corner, a column,
+// the edge of an opening): the distance along the travel direction at which it stands when
+// it lies within the base's swept path (its radius plus swept_clearance_in either side of
+// the travel line), taking the direction in the cone nearest the travel axis; no obstacle
+// otherwise. The front sensors alone miss a corner met at a slant, which then passes the
+// base's flank closer than the sonar's minimum range.
+double InSweptPathIn(double off_rad, double range_in, const HallwayFollowerConfig& c) {
+  const double nearest = std::max(0.0, off_rad - DegToRad(c.cone_deg) / 2.0);
+  const double from_centre = c.head_radius_in + range_in;
+  if (from_centre * std::sin(nearest) >= c.head_radius_in + c.swept_clearance_in)
+    return kNoObstacle;
+  return from_centre * std::cos(nearest);
+}
+
 // A wall at another angle than across (the hallway turns by less than a right angle), its
 // normal searched outward from the axis. A reading fits every plane whose normal lies in its
 // cone, so the sensors agree over a run of angles around the true one: the run found first
@@ -161,10 +176,7 @@ Ahead LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double h
     const double bearing = SensorBearingRad(k, c);
     const double off = std::abs(WrapPi(bearing - travel_rad));
     const double r = scan[k].range_in;
-    if (!scan[k].valid) continue;
-    if (off > DegToRad(std::max(c.front_half_angle_deg, c.oblique_half_angle_deg)) + 1e-9) {
-      continue;
-    }
+    if (!scan[k].valid || off > kPi / 2.0 + 1e-9) continue;
     double side_range = kNoObstacle;
     for (const WallLine* w : {&walls.left, &walls.right}) {
       if (!w->valid) continue;
@@ -172,6 +184,12 @@ Ahead LookAhead(const std::vector<SonarRange>& scan, double travel_rad, double h
           std::min(side_range, PredictedWallRangeIn(bearing, w->normal_rad, w->distance_in, c));
     }
     if (r >= side_range - c.side_echo_margin_in) continue;
+    if (off > front_half) {
+      ahead.free_in = std::min(ahead.free_in, InSweptPathIn(off, r, c));
+    }
+    if (off > DegToRad(std::max(c.front_half_angle_deg, c.oblique_half_angle_deg)) + 1e-9) {
+      continue;
+    }
     wide.push_back({bearing, r});
     if (off > front_half) continue;
     front.push_back({bearing, r});

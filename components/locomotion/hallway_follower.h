@@ -108,6 +108,9 @@ struct HallwayFollowerConfig {
   // Stop when an obstacle ahead is this close to the base centre: the 7.5 in head radius
   // plus 16.5 in of clearance for the base's corners and the sonar's minimum range of 1 ft.
   double stop_distance_in = 24.0;
+  // Echoes off the front fan that no side wall explains stop the base too when they lie
+  // within its radius plus this much of the travel line (a corner passed at a slant).
+  double swept_clearance_in = 4.0;
   // PD gains, spatial (per inch travelled rather than per second, so the path is the same
   // at every speed): the lateral offset y obeys y'' + 2 zeta/L y' + y/L^2 = 0 along the
   // distance travelled, critically damped (zeta = 1) with a length scale L of 36 in. The

@@ -238,6 +238,30 @@ TEST(HallwayFollowerTest, SideWallHeadedIntoAtASteepAngleBoundsTheFreeSpace) {
       EstimateHallway(Scan(walls, 0, -30, DegToRad(-5.0)), {}).free_forward_in));
 }
 
+TEST(HallwayFollowerTest, AnEchoOffTheFrontFanInTheSweptPathStopsTheBase) {
+  // A post 19 in ahead, 10.5-11.5 in left of the travel line: 29-31 deg off the travel
+  // direction, outside every front sensor's cone (15 + 11.8 deg at most), inside the 30 deg
+  // sensor's. The base (7.5 in radius) passing it would clear it by 3-4 in only.
+  std::vector<Segment> walls = Hallway();
+  walls.push_back({{19, 10.5}, {19, 11.5}});
+  const HallwayEstimate in_path = EstimateHallway(Scan(walls, 0, 0, 0), {});
+  EXPECT_LE(in_path.free_forward_in, HallwayFollowerConfig{}.stop_distance_in);
+  HallwayFollower follower;
+  const SteerCommand cmd = follower.Steer(in_path, 1.0, 0.05);
+  EXPECT_TRUE(cmd.stopped_for_obstacle);
+  EXPECT_EQ(cmd.linear_ftps, 0.0);
+  // The same post 20 in left of the travel line is passed.
+  walls.back() = {{34, 19.5}, {34, 20.5}};
+  EXPECT_TRUE(std::isinf(EstimateHallway(Scan(walls, 0, 0, 0), {}).free_forward_in));
+  // A post 14 in left of it lies within the radius plus the 4 in of clearance (the base
+  // slows for it) and outside the radius alone.
+  walls.back() = {{24, 13.5}, {24, 14.5}};
+  EXPECT_TRUE(std::isfinite(EstimateHallway(Scan(walls, 0, 0, 0), {}).free_forward_in));
+  HallwayFollowerConfig bare;
+  bare.swept_clearance_in = 0.0;
+  EXPECT_TRUE(std::isinf(EstimateHallway(Scan(walls, 0, 0, 0, bare), bare).free_forward_in));
+}
+
 TEST(HallwayFollowerTest, CornerTravellingBackwardTurnsTheOtherWay) {
   HallwayEstimate e;
   e.wall_backward_in = 50.0;

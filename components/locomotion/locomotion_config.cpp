@@ -39,6 +39,7 @@ LocomotionConfig LoadLocomotionConfig(const StrictYaml& c, const sensing::RobotC
   f.length_scale_in = h.Get<double>("length_scale_in", 6.0, 240.0, "in");
   f.max_correction_heading_deg = h.Get<double>("max_correction_heading_deg", 0.5, 30.0, "deg");
   f.stop_distance_in = h.Get<double>("stop_distance_in", 12.0, 120.0, "in");
+  f.swept_clearance_in = h.Get<double>("swept_clearance_in", 0.0, 36.0, "in");
   f.max_accel_ftps2 = h.Get<double>("max_accel_ftps2", 0.1, 10.0, "ft/s^2");
   f.brake_decel_ftps2 = h.Get<double>("brake_decel_ftps2", 0.1, 10.0, "ft/s^2");
   out.behaviour.turn_rate_radps = h.Get<double>("turn_rate_radps", 0.05, 3.0, "rad/s");

@@ -123,6 +123,28 @@ TEST(WhereAmIRunTest, AStartInAnOpenLobbyFollowsItsWallsOutWithoutTouchingAColum
   EXPECT_GE(r.first->edges_sensed, 4);
 }
 
+TEST(WhereAmIRunTest, LeavingTheLobbyPastACornerAtASlantTheBaseStopsShortOfIt) {
+  // Seed 428 starts in the same lobby and walks its walls. Where the lobby's east wall meets
+  // the main corridor, across from the science wing's mouth, the follower stops half the
+  // lobby's width short of the corridor's far wall, still beside the lobby wall, and turns
+  // away from it (-74 deg: the far wall read at a slant). It then heads across the corridor
+  // at 16 deg to its walls, and the west corner of the wing's mouth comes up on its flank,
+  // out of the front sensors' fan: the base ran into it and stayed there. Echoes off the
+  // fan that lie in the base's swept path now stop it (HallwayFollowerConfig's
+  // swept_clearance_in); whether the robot finds its way on from there is the accuracy
+  // figure's business.
+  const RunSetup teaching =
+      LoadRunSetup("", std::string(STICKREP_SOURCE_DIR) + "/maps/teaching_building_1f.yaml");
+  RunOptions o;
+  o.seed = 428;
+  o.ring_id = "main_corridor";
+  o.max_sim_s = 120.0;
+  o.keep_going_ft = 300.0;
+  const RunResult r = RunWhereAmI(teaching, o);
+  EXPECT_NE(r.start.find("edge 91 +"), std::string::npos) << r.start;  // in the lobby
+  EXPECT_EQ(r.collisions, 0) << r.ended;
+}
+
 TEST(WhereAmIRunTest, MeasuringCountsTheDoorsAndWallsPassed) {
   RunOptions o;
   o.seed = 11;
