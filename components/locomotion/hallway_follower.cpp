@@ -411,6 +411,7 @@ HallwayFollower::HallwayFollower(HallwayFollowerConfig config) : config_(config)
   require(c.max_accel_ftps2 > 0.0, "max_accel_ftps2 must be > 0");
   require(c.brake_decel_ftps2 > 0.0, "brake_decel_ftps2 must be > 0");
   require(c.stop_distance_in >= 0.0, "stop_distance_in must be >= 0");
+  require(c.swept_clearance_in >= 0.0, "swept_clearance_in must be >= 0");
   require(c.length_scale_in > 0.0, "length_scale_in must be > 0");
   require(c.damping_ratio > 0.0, "damping_ratio must be > 0");
   require(c.max_correction_heading_deg > 0.0 && c.max_correction_heading_deg < 90.0,

@@ -395,6 +395,9 @@ TEST(HallwayFollowerTest, RejectsBadConfig) {
   HallwayFollowerConfig c;
   c.length_scale_in = 0.0;
   EXPECT_THROW(HallwayFollower{c}, std::invalid_argument);
+  HallwayFollowerConfig d;
+  d.swept_clearance_in = -1.0;
+  EXPECT_THROW(HallwayFollower{d}, std::invalid_argument);
 }
 
 }  // namespace
