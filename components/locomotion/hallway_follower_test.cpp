@@ -253,8 +253,9 @@ TEST(HallwayFollowerTest, AnEchoOffTheFrontFanInTheSweptPathStopsTheBase) {
   // The same post 20 in left of the travel line is passed.
   walls.back() = {{34, 19.5}, {34, 20.5}};
   EXPECT_TRUE(std::isinf(EstimateHallway(Scan(walls, 0, 0, 0), {}).free_forward_in));
-  // A post 14 in left of it lies within the radius plus the 4 in of clearance (the base
-  // slows for it) and outside the radius alone.
+  // A post 14 in left of it: the 30 deg sensor's cone cannot tell it from one 9 in left,
+  // within the radius plus the 4 in of clearance (the base slows for it) but outside the
+  // radius alone.
   walls.back() = {{24, 13.5}, {24, 14.5}};
   EXPECT_TRUE(std::isfinite(EstimateHallway(Scan(walls, 0, 0, 0), {}).free_forward_in));
   HallwayFollowerConfig bare;
