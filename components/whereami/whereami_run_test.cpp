@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 
 #include "whereami/test_setup.h"
@@ -13,6 +14,20 @@ namespace stickrep::whereami {
 namespace {
 
 using testing::SmallMapSetup;
+
+// A run of the teaching building's main corridor (maps/teaching_building_1f.yaml) from the
+// start drawn for `seed`; `keep_going_ft` past the first pose, 0 to end there.
+RunResult TeachingMainCorridorRun(std::uint64_t seed, double max_sim_s,
+                                  double keep_going_ft = 0.0) {
+  const RunSetup teaching =
+      LoadRunSetup("", std::string(STICKREP_SOURCE_DIR) + "/maps/teaching_building_1f.yaml");
+  RunOptions o;
+  o.seed = seed;
+  o.ring_id = "main_corridor";
+  o.max_sim_s = max_sim_s;
+  o.keep_going_ft = keep_going_ft;
+  return RunWhereAmI(teaching, o);
+}
 
 TEST(WhereAmIRunTest, SeededStartsOnTheSmallMapRecoverTheTruePose) {
   for (std::uint64_t seed : {5, 6, 7, 8}) {
@@ -110,13 +125,7 @@ TEST(WhereAmIRunTest, AStartInAnOpenLobbyFollowsItsWallsOutWithoutTouchingAColum
   // Whether that pose is right is the accuracy figure's business (docs/whereami.md): from
   // this start, walking the lobby first, it is not (edge 82 for 7; maps/README.md, a robot
   // inside a hall).
-  const RunSetup teaching =
-      LoadRunSetup("", std::string(STICKREP_SOURCE_DIR) + "/maps/teaching_building_1f.yaml");
-  RunOptions o;
-  o.seed = 2;
-  o.ring_id = "main_corridor";
-  o.max_sim_s = 300.0;
-  const RunResult r = RunWhereAmI(teaching, o);
+  const RunResult r = TeachingMainCorridorRun(2, 300.0);
   EXPECT_NE(r.start.find("edge 91 +"), std::string::npos) << r.start;  // in the lobby
   EXPECT_EQ(r.collisions, 0);
   ASSERT_TRUE(r.first.has_value()) << r.ended;
@@ -133,14 +142,7 @@ TEST(WhereAmIRunTest, LeavingTheLobbyPastACornerAtASlantTheBaseStopsShortOfIt) {
   // fan that lie in the base's swept path now stop it (HallwayFollowerConfig's
   // swept_clearance_in); whether the robot finds its way on from there is the accuracy
   // figure's business.
-  const RunSetup teaching =
-      LoadRunSetup("", std::string(STICKREP_SOURCE_DIR) + "/maps/teaching_building_1f.yaml");
-  RunOptions o;
-  o.seed = 428;
-  o.ring_id = "main_corridor";
-  o.max_sim_s = 120.0;
-  o.keep_going_ft = 300.0;
-  const RunResult r = RunWhereAmI(teaching, o);
+  const RunResult r = TeachingMainCorridorRun(428, 120.0, 300.0);
   EXPECT_NE(r.start.find("edge 91 +"), std::string::npos) << r.start;  // in the lobby
   EXPECT_EQ(r.collisions, 0) << r.ended;
 }
