@@ -223,6 +223,10 @@ HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
   require(c.camera_frame_period_s > 0.0, "camera_frame_period_s must be > 0");
   require(c.door_in_view_in >= 0.0 && c.min_view_speed_ftps > 0.0,
           "door_in_view_in must be >= 0 and min_view_speed_ftps > 0");
+  require(c.stall_speed_ftps > 0.0 && c.stall_time_s > 0.0 && c.stall_travel_in > 0.0 &&
+              c.stall_travel_in < FeetToInches(c.stall_speed_ftps) * c.stall_time_s,
+          "stall_speed_ftps, stall_time_s and stall_travel_in must be > 0, and stall_travel_in "
+          "less than stall_time_s at stall_speed_ftps");
 }
 
 void HallwayBehaviour::Reset() {
@@ -232,6 +236,7 @@ void HallwayBehaviour::Reset() {
   travel_sign_ = +1;
   last_linear_ftps_ = 0.0;
   last_angular_radps_ = 0.0;
+  driven_ = false;
   wall_known_ = false;
   oblique_scans_ = 0;
   pending_ = TurnKind::kNone;
@@ -370,6 +375,33 @@ void HallwayBehaviour::Reverse(BehaviourOutput& out) {
   out.linear_ftps = out.angular_radps = 0.0;
   out.reversed = true;
   out.turn_kind = TurnKind::kHallwayEnd;
+}
+
+bool HallwayBehaviour::Stalled(double odometer_in, double now_s, BehaviourOutput& out) {
+  // The speed last asked of the base is what it has been driving at since.
+  if (std::abs(last_linear_ftps_) < config_.stall_speed_ftps) {
+    driven_ = false;
+    return false;
+  }
+  if (!driven_ || std::abs(odometer_in - driven_odometer_in_) >= config_.stall_travel_in) {
+    driven_ = true;
+    driven_since_s_ = now_s;
+    driven_odometer_in_ = odometer_in;
+    return false;
+  }
+  const double driven_s = now_s - driven_since_s_;
+  if (driven_s < config_.stall_time_s) return false;
+  const double moved_in = std::abs(odometer_in - driven_odometer_in_);
+  const double speed_ftps = std::abs(last_linear_ftps_);
+  driven_ = false;
+  Reverse(out);
+  out.stalled = true;
+  out.reason = fmt::format(
+      "stalled: driven at {:.1f} ft/s for {:.1f} s, the base moved {:.1f} in (against something "
+      "the sonar does not see): travel reversed, now {}",
+      speed_ftps, driven_s, moved_in, travel_sign_ > 0 ? "forward" : "backward");
+  Report(out);
+  return true;
 }
 
 bool HallwayBehaviour::BrakeAndAct(double wall_in, double odometry_heading_rad, double dt_s,
@@ -562,6 +594,7 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
   have_odometer_ = true;
   previous_odometer_in_ = odometer_in;
   previous_heading_rad_ = odometry_heading_rad;
+  if (Stalled(odometer_in, now_s, out)) return out;
   const int sign = commanded_speed_ftps > 0.0 ? +1 : (commanded_speed_ftps < 0.0 ? -1 : 0);
   if (sign != 0 && sign != commanded_sign_) {
     // The mission chose a direction: it holds until the mission changes it again or a

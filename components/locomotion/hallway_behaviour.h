@@ -150,6 +150,15 @@ struct HallwayBehaviourConfig {
   double obstacle_patience_s = 5.0;
   // The hallway width assumed until a scan has measured one.
   double default_hallway_width_in = 120.0;
+  // A stalled base: driven at stall_speed_ftps or more for stall_time_s while its odometer
+  // moved less than stall_travel_in. The base is against something the sonar does not see
+  // (glass, a low step, a corner nearer than the sonar's 1 ft minimum range); travel
+  // reverses at once, as at a hallway end. The encoders are the only witness: wheels that
+  // spin on the floor against the obstacle would need the motors' current, which the
+  // LabMate's driver does not report here.
+  double stall_speed_ftps = 0.25;
+  double stall_time_s = 1.0;
+  double stall_travel_in = 0.5;
   // The navigation envelope of §6.4.2: within 1 ft of the axis and 7.5° of its direction.
   double envelope_offset_in = 12.0;
   double envelope_heading_deg = 7.5;
@@ -181,6 +190,7 @@ struct BehaviourOutput {
   bool turn_started = false;
   bool reversed = false;
   bool obstacle_stop_started = false;
+  bool stalled = false;                  // the base did not move while driven (see stall_time_s)
   TurnKind turn_kind = TurnKind::kNone;  // the decision taken this step
   int travel_sign = +1;  // +1 forward, -1 backward
   // The newest scan's view of the hallway.
@@ -233,6 +243,9 @@ class HallwayBehaviour {
   void Blocked(double odometer_in, double now_s, BehaviourOutput& out);
   // Travel reverses (a hallway end, §6.3 A4).
   void Reverse(BehaviourOutput& out);
+  // Whether the base has stalled while driven (stall_time_s): then travel reverses and
+  // `out` is final.
+  bool Stalled(double odometer_in, double now_s, BehaviourOutput& out);
   // Updates the track from the fresh scan (`width_in`: the hallway's).
   void UpdateTrack(double width_in);
   // Whether `wall` on `side` (+1 left, -1 right) is no nearer than the track puts it (a
@@ -270,6 +283,10 @@ class HallwayBehaviour {
   bool blocked_ = false;
   double blocked_since_s_ = 0.0;
   double blocked_odometer_in_ = 0.0;
+  // Watching for a stall: since when the base has been driven, and the odometer then.
+  bool driven_ = false;
+  double driven_since_s_ = 0.0;
+  double driven_odometer_in_ = 0.0;
 
   int commanded_sign_ = 0;
   int travel_sign_ = +1;

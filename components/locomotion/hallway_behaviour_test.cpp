@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "common/units.h"
@@ -37,7 +38,10 @@ struct Drive {
       turns += out.turn_started;
       reversals += out.reversed;
       obstacle_stops += out.obstacle_stop_started;
-      const double ds = FeetToInches(out.linear_ftps) * kDt;
+      stalls += out.stalled;
+      double ds = FeetToInches(out.linear_ftps) * kDt * motion_gain;
+      // A pane the sonar does not see: the base's head stops at it, the wheels with it.
+      if (ds > 0.0 && x + kHeadRadiusIn + ds * std::cos(psi) > glass_x) ds = 0.0;
       x += ds * std::cos(psi + out.angular_radps * kDt / 2.0);
       y += ds * std::sin(psi + out.angular_radps * kDt / 2.0);
       psi = WrapPi(psi + out.angular_radps * kDt);
@@ -50,11 +54,16 @@ struct Drive {
   }
 
   static constexpr double kDt = 0.05;
+  static constexpr double kHeadRadiusIn = 7.5;
   std::vector<Segment> walls;
+  // Glass across the hallway at this x (the sonar does not see it), and the share of the
+  // commanded travel the base makes (a load, a slope).
+  double glass_x = std::numeric_limits<double>::infinity();
+  double motion_gain = 1.0;
   HallwayBehaviour b;
   BehaviourOutput out;
   double x = -400.0, y = 0.0, psi = 0.0, odometer = 0.0, t = 0.0;
-  int step = 0, turns = 0, reversals = 0, obstacle_stops = 0;
+  int step = 0, turns = 0, reversals = 0, obstacle_stops = 0, stalls = 0;
   double max_speed = 0.0, max_rate = 0.0, max_rate_change = 0.0, last_rate = 0.0;
 };
 
@@ -393,6 +402,43 @@ TEST(HallwayBehaviourTest, StopsAtOnceForSomethingSuddenlyClose) {
   EXPECT_EQ(r.obstacle_stops, 1);
 }
 
+TEST(HallwayBehaviourTest, AStallAgainstGlassTheSonarMissesReversesTravelAfterTheStallTime) {
+  Drive r(fake::Hallway(60));
+  r.glass_x = -250.0;
+  ASSERT_TRUE(r.Until([&] { return r.x + Drive::kHeadRadiusIn > r.glass_x - 0.5; }, 30.0));
+  const double contact_t = r.t;
+  ASSERT_EQ(r.stalls, 0);
+  ASSERT_TRUE(r.Until([&] { return r.stalls > 0; }, 5.0)) << r.out.reason;
+  EXPECT_NEAR(r.t - contact_t, r.b.config().stall_time_s, 0.15);
+  EXPECT_TRUE(r.out.reversed);
+  EXPECT_EQ(r.out.linear_ftps, 0.0);
+  EXPECT_EQ(r.b.travel_sign(), -1);
+  EXPECT_THAT(r.out.reason, ::testing::HasSubstr("stalled: driven at 2.6 ft/s"));
+  EXPECT_THAT(r.out.reason, ::testing::HasSubstr("travel reversed, now backward"));
+  // The base then backs away from the glass, and stalls no more.
+  const double stalled_x = r.x;
+  ASSERT_TRUE(r.Until([&] { return r.x < stalled_x - 24.0; }, 5.0)) << r.out.reason;
+  EXPECT_EQ(r.stalls, 1);
+}
+
+TEST(HallwayBehaviourTest, ABaseThatMovesSlowlyOrWaitsBeforeAnObstacleIsNotStalled) {
+  // A base making a fifth of its commanded travel (a load, a slope) is slow, not stalled.
+  Drive slow(fake::Hallway(60));
+  slow.motion_gain = 0.2;
+  slow.Until([] { return false; }, 20.0);
+  EXPECT_EQ(slow.stalls, 0) << slow.out.reason;
+  EXPECT_EQ(slow.reversals, 0);
+  EXPECT_GT(slow.x, -400.0 + 60.0);
+  // Stopped before something ahead, the base is not driven: no stall however long it waits.
+  Drive r(fake::Hallway(60));
+  ASSERT_TRUE(r.Until([&] { return r.x > -200.0; }, 30.0));
+  r.walls.push_back({{r.x + 30.0, -8}, {r.x + 30.0, 8}});
+  ASSERT_TRUE(r.Until([&] { return r.out.state == BehaviourState::kObstacle; }, 0.3));
+  r.Until([] { return false; }, r.b.config().obstacle_patience_s - 0.5);
+  EXPECT_EQ(r.stalls, 0) << r.out.reason;
+  EXPECT_EQ(r.out.state, BehaviourState::kObstacle);
+}
+
 TEST(HallwayBehaviourTest, MissionDirectionSetsTheTravelAndNonFiniteInputHolds) {
   HallwayBehaviour b;
   b.OnScan(Scan(fake::Hallway(60), 0, 0, 0), 0.0);
@@ -415,6 +461,12 @@ TEST(HallwayBehaviourTest, RejectsBadConfig) {
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
   c = {};
   c.camera_frame_period_s = 0.0;
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+  c = {};
+  c.stall_travel_in = 3.0;  // as far as 1 s at 0.25 ft/s goes: every slow start would stall
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+  c = {};
+  c.stall_time_s = 0.0;
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
 }
 

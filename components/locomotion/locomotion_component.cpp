@@ -54,8 +54,9 @@ void LocomotionComponent::Deactivate() {
 std::string LocomotionComponent::Summary() const {
   return fmt::format(
       "{} commands followed, {} stops, odometry {:.1f} in travelled; hallway following: {} "
-      "turns, {} reversals, {} obstacle stops",
-      commands_followed_, stops_, odometer_.distance_in(), turns_, reversals_, obstacle_stops_);
+      "turns, {} reversals, {} obstacle stops, {} stalls",
+      commands_followed_, stops_, odometer_.distance_in(), turns_, reversals_, obstacle_stops_,
+      stalls_);
 }
 
 void LocomotionComponent::OnCommand(const message::MotionCommand& m) {
@@ -131,7 +132,12 @@ void LocomotionComponent::Follow(double now_s, double dt_s) {
     turns_++;
     ctx_.log->info("{}", out.reason);
   }
-  if (out.reversed) {
+  if (out.stalled) {
+    // A stall is a contact the sonar missed: always worth a warning.
+    stalls_++;
+    reversals_++;
+    ctx_.log->warn("{}", out.reason);
+  } else if (out.reversed) {
     reversals_++;
     ctx_.log->info("{}", out.reason);
   }

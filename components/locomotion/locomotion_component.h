@@ -63,7 +63,8 @@ class LocomotionComponent : public component::Component {
   int64_t last_command_ns_ = 0;
   int64_t last_encoder_ns_ = 0;
   int64_t last_scan_ns_ = 0;
-  uint64_t commands_followed_ = 0, stops_ = 0, turns_ = 0, reversals_ = 0, obstacle_stops_ = 0;
+  uint64_t commands_followed_ = 0, stops_ = 0, turns_ = 0, reversals_ = 0, obstacle_stops_ = 0,
+           stalls_ = 0;
 };
 
 // The gated scan as the hallway behaviour reads it.

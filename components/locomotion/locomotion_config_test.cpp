@@ -55,6 +55,22 @@ TEST(LocomotionConfigTest, OutOfRangeValueStatesTheRangeAndUnit) {
   }
 }
 
+TEST(LocomotionConfigTest, AStallTravelTheStallSpeedCoversInTheStallTimeIsRefused) {
+  try {
+    // 0.25 ft/s for 1 s is 3 in: a stall bar of 4 in would stop every slow start.
+    Load(Replace(Shipped(), "stall_travel_in: 0.5", "stall_travel_in: 4"));
+    FAIL() << "accepted a stall bar the stall speed cannot clear";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("locomotion.yaml:"));
+    EXPECT_THAT(e.what(), HasSubstr("stall_travel_in"));
+    EXPECT_THAT(e.what(), HasSubstr("must be less than"));
+  }
+  const LocomotionConfig c = Load(Shipped());
+  EXPECT_DOUBLE_EQ(c.behaviour.stall_speed_ftps, 0.25);
+  EXPECT_DOUBLE_EQ(c.behaviour.stall_time_s, 1.0);
+  EXPECT_DOUBLE_EQ(c.behaviour.stall_travel_in, 0.5);
+}
+
 TEST(LocomotionConfigTest, SerialDeviceIsRefusedAsNotBuilt) {
   EXPECT_THROW(Load(Replace(Shipped(), "device: virtual", "device: serial")), InputError);
 }
