@@ -2,11 +2,14 @@
 // silence stops it, and a non-finite speed stops it at once.
 #include "locomotion/locomotion_component.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <spdlog/sinks/null_sink.h>
 
 #include <cmath>
 #include <vector>
+
+#include "locomotion/fake_sonar.h"
 
 namespace stickrep::locomotion {
 namespace {
@@ -89,6 +92,34 @@ TEST_F(LocomotionComponentTest, EncodersBecomeOdometryStampedOnTheBaseClock) {
   e.header.stamp_ns = 4'000'000'000;
   base_.OnEncoders(e);
   EXPECT_EQ(counters_.dropped(), 1u);  // time went backwards
+}
+
+TEST_F(LocomotionComponentTest, FollowingWithWheelsThatDoNotTurnIsAStallCountedAndSaid) {
+  // A 120 in hallway seen from its axis, and encoders that never move: the base is held by
+  // something the sonar does not see.
+  message::SonarScan scan;
+  const std::vector<SonarRange> ranges = fake::Scan(fake::Hallway(60), 0.0, 0.0, 0.0);
+  for (size_t k = 0; k < ranges.size() && k < scan.range_in.size(); ++k) {
+    scan.range_in[k] = static_cast<float>(ranges[k].range_in);
+    scan.state[k] = ranges[k].valid ? sonar::ReadingState::kValid : sonar::ReadingState::kNoEcho;
+  }
+  message::MotionCommand follow;
+  follow.mode = message::MotionMode::kFollowHallway;
+  follow.linear_speed_ftps = 1.0;
+  message::EncoderReading still;
+  bool said = false;
+  for (int step = 0; step < 40 && !said; ++step) {  // up to 2 s at 20 Hz
+    clock_.now_ns += 50'000'000;
+    base_.OnCommand(follow);
+    scan.header.stamp_ns = still.header.stamp_ns = clock_.now_ns;
+    base_.OnScan(scan);
+    base_.OnEncoders(still);
+    said = state_.sent.back().message.find("stalled") != std::string::npos;
+  }
+  ASSERT_TRUE(said) << state_.sent.back().message;
+  EXPECT_THAT(state_.sent.back().message, ::testing::HasSubstr("travel reversed, now backward"));
+  EXPECT_THAT(base_.Summary(), ::testing::HasSubstr("1 reversals, 0 obstacle stops, 1 stalls"));
+  EXPECT_EQ(wheels_.sent.back().left_speed_ftps, 0.0);
 }
 
 }  // namespace
