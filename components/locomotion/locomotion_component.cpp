@@ -132,14 +132,15 @@ void LocomotionComponent::Follow(double now_s, double dt_s) {
     turns_++;
     ctx_.log->info("{}", out.reason);
   }
-  if (out.stalled) {
+  if (out.reversed) {
+    reversals_++;
     // A stall is a contact the sonar missed: always worth a warning.
-    stalls_++;
-    reversals_++;
-    ctx_.log->warn("{}", out.reason);
-  } else if (out.reversed) {
-    reversals_++;
-    ctx_.log->info("{}", out.reason);
+    if (out.stalled) {
+      stalls_++;
+      ctx_.log->warn("{}", out.reason);
+    } else {
+      ctx_.log->info("{}", out.reason);
+    }
   }
   if (out.obstacle_stop_started) {
     obstacle_stops_++;

@@ -35,36 +35,39 @@ TEST(LocomotionConfigTest, ShippedFileLoadsWithTheRobotsRing) {
   EXPECT_DOUBLE_EQ(c.behaviour.envelope_offset_in, 12.0);
 }
 
-TEST(LocomotionConfigTest, UnknownHallwayKeyNamesFileLineAndKey) {
+// The message loading `text` is refused with; a failure (and "") when it loads.
+std::string Refusal(const std::string& text, const char* accepted) {
   try {
-    Load(Replace(Shipped(), "    turn_rate_radps:", "    turn_speed: 1\n    turn_rate_radps:"));
-    FAIL() << "accepted an unknown key";
+    Load(text);
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("locomotion.yaml:"));
-    EXPECT_THAT(e.what(), HasSubstr("locomotion.hallway.turn_speed"));
+    return e.what();
   }
+  ADD_FAILURE() << "accepted " << accepted;
+  return "";
+}
+
+TEST(LocomotionConfigTest, UnknownHallwayKeyNamesFileLineAndKey) {
+  const std::string why =
+      Refusal(Replace(Shipped(), "    turn_rate_radps:", "    turn_speed: 1\n    turn_rate_radps:"),
+              "an unknown key");
+  EXPECT_THAT(why, HasSubstr("locomotion.yaml:"));
+  EXPECT_THAT(why, HasSubstr("locomotion.hallway.turn_speed"));
 }
 
 TEST(LocomotionConfigTest, OutOfRangeValueStatesTheRangeAndUnit) {
-  try {
-    Load(Replace(Shipped(), "stop_distance_in: 24", "stop_distance_in: 2"));
-    FAIL() << "accepted a stop distance inside the sonar's minimum range";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("stop_distance_in"));
-    EXPECT_THAT(e.what(), HasSubstr("in"));
-  }
+  const std::string why = Refusal(Replace(Shipped(), "stop_distance_in: 24", "stop_distance_in: 2"),
+                                  "a stop distance inside the sonar's minimum range");
+  EXPECT_THAT(why, HasSubstr("stop_distance_in"));
+  EXPECT_THAT(why, HasSubstr("in"));
 }
 
 TEST(LocomotionConfigTest, AStallTravelTheStallSpeedCoversInTheStallTimeIsRefused) {
-  try {
-    // 0.25 ft/s for 1 s is 3 in: a stall bar of 4 in would stop every slow start.
-    Load(Replace(Shipped(), "stall_travel_in: 0.5", "stall_travel_in: 4"));
-    FAIL() << "accepted a stall bar the stall speed cannot clear";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("locomotion.yaml:"));
-    EXPECT_THAT(e.what(), HasSubstr("stall_travel_in"));
-    EXPECT_THAT(e.what(), HasSubstr("must be less than"));
-  }
+  // 0.25 ft/s for 1 s is 3 in: a stall bar of 4 in would stop every slow start.
+  const std::string why = Refusal(Replace(Shipped(), "stall_travel_in: 0.5", "stall_travel_in: 4"),
+                                  "a stall bar the stall speed cannot clear");
+  EXPECT_THAT(why, HasSubstr("locomotion.yaml:"));
+  EXPECT_THAT(why, HasSubstr("stall_travel_in"));
+  EXPECT_THAT(why, HasSubstr("must be less than"));
   const LocomotionConfig c = Load(Shipped());
   EXPECT_DOUBLE_EQ(c.behaviour.stall_speed_ftps, 0.25);
   EXPECT_DOUBLE_EQ(c.behaviour.stall_time_s, 1.0);
