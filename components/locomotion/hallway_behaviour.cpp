@@ -201,6 +201,18 @@ double ViewPacedSpeedFtps(const HallwayBehaviourConfig& c, double range_in) {
                   InchesToFeet(margin_in / (c.frames_per_door * c.camera_frame_period_s)));
 }
 
+double ViewOffsetIn(const HallwayBehaviourConfig& c, double width_in) {
+  if (c.frames_per_door <= 0 || c.max_view_offset_in <= 0.0 || !std::isfinite(width_in)) return 0.0;
+  // The range at which the widest door stays in view for the set frames at top speed.
+  const double top_inps = FeetToInches(c.follower.max_speed_ftps);
+  const double range_in =
+      (c.door_in_view_in + c.frames_per_door * c.camera_frame_period_s * top_inps) /
+      (2.0 * std::tan(DegToRad(c.camera_fov_deg) / 2.0));
+  const double room_in = width_in / 2.0 - c.follower.stop_distance_in;
+  return -std::clamp(range_in - width_in / 2.0, 0.0,
+                     std::max(0.0, std::min(c.max_view_offset_in, room_in)));
+}
+
 HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
     : config_(config), follower_(config.follower) {
   const auto& c = config_;
@@ -219,6 +231,8 @@ HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
   require(c.envelope_offset_in > 0.0 && c.envelope_heading_deg > 0.0,
           "the envelope must be > 0");
   require(c.frames_per_door >= 0, "frames_per_door must be >= 0");
+  require(c.max_view_offset_in >= 0.0 && c.max_view_offset_in < c.envelope_offset_in,
+          "max_view_offset_in must be in [0, envelope_offset_in)");
   require(c.camera_fov_deg > 0.0 && c.camera_fov_deg < 180.0, "camera_fov_deg must be in (0, 180)");
   require(c.camera_frame_period_s > 0.0, "camera_frame_period_s must be > 0");
   require(c.door_in_view_in >= 0.0 && c.min_view_speed_ftps > 0.0,
@@ -293,12 +307,14 @@ void HallwayBehaviour::Report(BehaviourOutput& out) const {
   out.travel_sign = travel_sign_;
   out.offset_valid = tracker_.offset_known();
   out.lateral_offset_in = out.offset_valid ? tracker_.offset_in() : 0.0;
+  out.target_offset_in = target_offset_in_;
   out.heading_valid = tracker_.heading_known();
   out.heading_error_rad = out.heading_valid ? tracker_.heading_rad() : 0.0;
-  out.in_envelope = state_ == BehaviourState::kFollowing && out.offset_valid &&
-                    std::abs(out.lateral_offset_in) <= config_.envelope_offset_in &&
-                    out.heading_valid &&
-                    std::abs(out.heading_error_rad) <= DegToRad(config_.envelope_heading_deg);
+  out.in_envelope =
+      state_ == BehaviourState::kFollowing && out.offset_valid &&
+      std::abs(out.lateral_offset_in - target_offset_in_) <= config_.envelope_offset_in &&
+      out.heading_valid &&
+      std::abs(out.heading_error_rad) <= DegToRad(config_.envelope_heading_deg);
 }
 
 bool HallwayBehaviour::NotNearer(const WallLine& wall, int side, double half_width_in) const {
@@ -547,9 +563,11 @@ void HallwayBehaviour::Follow(double speed, double width_in, double wall_in, dou
   // Where a wall ahead reaches into the side sensors' view, odometry carries the track.
   if (scan_fresh_ && !std::isfinite(wall_in)) UpdateTrack(width_in);
   scan_fresh_ = false;
+  // Steered to the line the camera wants: the axis, or off it in a narrow hallway.
+  target_offset_in_ = ViewOffsetIn(config_, width_in);
   HallwayEstimate steer_on = estimate_;
   steer_on.offset_valid = tracker_.offset_known();
-  steer_on.lateral_offset_in = tracker_.offset_in();
+  steer_on.lateral_offset_in = tracker_.offset_in() - target_offset_in_;
   steer_on.heading_valid = tracker_.heading_known();
   steer_on.heading_error_rad = tracker_.heading_rad();
   const SteerCommand cmd = follower_.Steer(steer_on, travel_sign_ * speed, dt_s);

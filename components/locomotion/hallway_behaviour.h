@@ -174,11 +174,22 @@ struct HallwayBehaviourConfig {
   double door_in_view_in = 40.0;     // the widest single door class (Table 4.1)
   // Never slower than this, however near the wall (the base must still get somewhere).
   double min_view_speed_ftps = 0.5;
+  // Riding off the axis for the camera. In a hallway too narrow for the pacing above to
+  // allow the top speed on its axis, the base is steered up to this far from the axis,
+  // away from the mapped wall, toward the range at which it does (55.5 in with the
+  // values above), and never nearer the far wall than the follower's stop distance. The
+  // envelope of §6.4.2 is then judged about that line. 0: the base keeps to the axis.
+  double max_view_offset_in = 0.0;
 };
 
 // The speed cap of the camera-view pacing above at `range_in` from the mapped wall
 // (unbounded when frames_per_door is 0).
 double ViewPacedSpeedFtps(const HallwayBehaviourConfig& config, double range_in);
+
+// The lateral offset the base is steered to in a hallway `width_in` wide (the sign of
+// BehaviourOutput::lateral_offset_in: negative, away from the mapped wall; 0 on the axis):
+// see max_view_offset_in.
+double ViewOffsetIn(const HallwayBehaviourConfig& config, double width_in);
 
 // What the behaviour wants from the base this step, and why.
 struct BehaviourOutput {
@@ -195,10 +206,11 @@ struct BehaviourOutput {
   int travel_sign = +1;  // +1 forward, -1 backward
   // The newest scan's view of the hallway.
   bool offset_valid = false;
-  double lateral_offset_in = 0.0;  // + nearer the left (mapped) wall
+  double lateral_offset_in = 0.0;  // from the axis, + nearer the left (mapped) wall
+  double target_offset_in = 0.0;   // the line steered to (ViewOffsetIn), the same sign
   bool heading_valid = false;
   double heading_error_rad = 0.0;  // forward axis vs the hallway axis, CCW +
-  bool in_envelope = false;        // following, and inside the §6.4.2 envelope
+  bool in_envelope = false;        // following, and inside the §6.4.2 envelope about that line
 };
 
 class HallwayBehaviour {
@@ -269,6 +281,7 @@ class HallwayBehaviour {
   HallwayEstimate estimate_;
   std::vector<SonarRange> scan_;
   double hallway_width_in_ = 0.0;  // last measured, 0 until one is
+  double target_offset_in_ = 0.0;  // the line Follow steers to (ViewOffsetIn)
 
   // Wall ahead in the travel direction, as last seen, and the odometer then.
   bool wall_known_ = false;

@@ -140,6 +140,53 @@ TEST(HallwayBehaviourTest, PacesTheBaseSoTheWidestDoorStaysWholeInViewForTheSetF
   EXPECT_NEAR(wide.max_speed, 2.6, 1e-9);
 }
 
+TEST(HallwayBehaviourTest, RidesOffTheAxisAwayFromTheMappedWallWhereTheHallwayIsNarrow) {
+  HallwayBehaviourConfig c;
+  c.frames_per_door = 3;
+  c.max_view_offset_in = 10.0;
+  // At 55.4 in from the wall the widest door stays in view for 3 frames at 2.6 ft/s.
+  const double top_range_in = (40.0 + 3 * 0.2 * 31.2) / (2.0 * std::tan(DegToRad(55.817 / 2.0)));
+  EXPECT_NEAR(ViewOffsetIn(c, 96.0), -(top_range_in - 48.0), 1e-9);
+  EXPECT_DOUBLE_EQ(ViewOffsetIn(c, 88.0), -10.0);  // capped
+  EXPECT_DOUBLE_EQ(ViewOffsetIn(c, 120.0), 0.0);   // the text's hallways: on the axis
+  EXPECT_DOUBLE_EQ(ViewOffsetIn(c, 60.0), -6.0);   // never nearer the far wall than 24 in
+  EXPECT_DOUBLE_EQ(ViewOffsetIn(c, 40.0), 0.0);
+  HallwayBehaviourConfig off = c;
+  off.max_view_offset_in = 0.0;
+  EXPECT_DOUBLE_EQ(ViewOffsetIn(off, 88.0), 0.0);
+  off = c;
+  off.frames_per_door = 0;
+  EXPECT_DOUBLE_EQ(ViewOffsetIn(off, 88.0), 0.0);
+
+  // Closed loop from the axis of an 88 in corridor: the base settles 10 in off it, away
+  // from the camera's wall, inside the envelope judged about that line, at the pace of
+  // 54 in from the wall (2.4 ft/s, not the axis's 0.96).
+  Drive narrow(fake::Hallway(44), c);
+  narrow.Until([] { return false; }, 20.0);
+  EXPECT_NEAR(narrow.y, -10.0, 1.0);
+  EXPECT_NEAR(narrow.out.lateral_offset_in, narrow.y, 1.0);
+  EXPECT_DOUBLE_EQ(narrow.out.target_offset_in, -10.0);
+  EXPECT_TRUE(narrow.out.in_envelope);
+  EXPECT_NEAR(std::abs(narrow.out.linear_ftps), ViewPacedSpeedFtps(c, 54.0), 0.05);
+  EXPECT_GT(std::abs(narrow.out.linear_ftps), 2.3);
+  // Started 8 in nearer the camera's wall than the axis (slow there: 36 in from the wall)
+  // it crosses to the same line.
+  Drive near(fake::Hallway(44), c);
+  near.y = 8.0;
+  EXPECT_TRUE(near.Until([&] { return near.y <= -9.0; }, 40.0)) << near.y;
+  EXPECT_LE(near.x, 900.0);
+  // In a 96 in corridor it stops short of the cap, where the pace allows the top speed.
+  Drive mid(fake::Hallway(48), c);
+  mid.Until([] { return false; }, 20.0);
+  EXPECT_NEAR(mid.y, -(top_range_in - 48.0), 1.0);
+  EXPECT_NEAR(std::abs(mid.out.linear_ftps), 2.6, 1e-9);
+  // In the 120 in hallway it keeps to the axis.
+  Drive wide(fake::Hallway(60), c);
+  wide.Until([] { return false; }, 20.0);
+  EXPECT_NEAR(wide.y, 0.0, 0.5);
+  EXPECT_DOUBLE_EQ(wide.out.target_offset_in, 0.0);
+}
+
 // An 88 in corridor whose camera wall has a door alcove 40 in deep and 72 in long at
 // x = 0..72; with `open_right`, the other side opens into a hall from x = -300 to 300.
 std::vector<Segment> AlcoveCorridor(bool open_right) {
@@ -467,6 +514,9 @@ TEST(HallwayBehaviourTest, RejectsBadConfig) {
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
   c = {};
   c.stall_time_s = 0.0;
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+  c = {};
+  c.max_view_offset_in = 12.0;  // the whole envelope: a line on its edge
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
 }
 

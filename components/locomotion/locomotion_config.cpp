@@ -49,6 +49,10 @@ LocomotionConfig LoadLocomotionConfig(const StrictYaml& c, const sensing::RobotC
   out.behaviour.envelope_heading_deg = h.Get<double>("envelope_heading_deg", 0.5, 30.0, "deg");
   out.behaviour.frames_per_door = h.Get<int>("frames_per_door", 0, 20, "frames");
   out.behaviour.min_view_speed_ftps = h.Get<double>("min_view_speed_ftps", 0.1, 5.0, "ft/s");
+  out.behaviour.max_view_offset_in = h.Get<double>("max_view_offset_in", 0.0, 60.0, "in");
+  if (out.behaviour.max_view_offset_in >= out.behaviour.envelope_offset_in) {
+    h.Fail("max_view_offset_in", "must be less than envelope_offset_in");
+  }
   out.behaviour.stall_speed_ftps = h.Get<double>("stall_speed_ftps", 0.05, 5.0, "ft/s");
   out.behaviour.stall_time_s = h.Get<double>("stall_time_s", 0.1, 10.0, "s");
   out.behaviour.stall_travel_in = h.Get<double>("stall_travel_in", 0.01, 12.0, "in");

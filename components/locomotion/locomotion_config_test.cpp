@@ -74,6 +74,16 @@ TEST(LocomotionConfigTest, AStallTravelTheStallSpeedCoversInTheStallTimeIsRefuse
   EXPECT_DOUBLE_EQ(c.behaviour.stall_travel_in, 0.5);
 }
 
+TEST(LocomotionConfigTest, AViewOffsetReachingTheEnvelopeIsRefused) {
+  const std::string why =
+      Refusal(Replace(Shipped(), "max_view_offset_in: 10", "max_view_offset_in: 12"),
+              "a line on the envelope's edge");
+  EXPECT_THAT(why, HasSubstr("locomotion.yaml:"));
+  EXPECT_THAT(why, HasSubstr("max_view_offset_in"));
+  EXPECT_THAT(why, HasSubstr("must be less than envelope_offset_in"));
+  EXPECT_DOUBLE_EQ(Load(Shipped()).behaviour.max_view_offset_in, 10.0);
+}
+
 TEST(LocomotionConfigTest, SerialDeviceIsRefusedAsNotBuilt) {
   EXPECT_THROW(Load(Replace(Shipped(), "device: virtual", "device: serial")), InputError);
 }
