@@ -158,10 +158,15 @@ class Run {
   };
   std::optional<KidnapSensing> kidnap_sensing_;
   static constexpr double kCompareAfterIn = 12.0;
+  static constexpr const char* kGoalId = "far";
   double first_pose_in_ = -1.0;
   int last_view_edge_ = -1;
   std::string last_belief_;
   message::LocomotionState last_state_ = message::LocomotionState::kStopped;
+  // The place of the last goal sent: when the robot reaches it with travel still to watch,
+  // the next goal is set as far on from there.
+  std::optional<Recovery> goal_;
+  message::MissionState last_mission_ = message::MissionState::kWaitingForComponents;
 };
 
 Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::PlacedRobot placed,
@@ -196,6 +201,12 @@ Run::Run(const RunSetup& setup, const RunOptions& options, virtual_robot::Placed
       result_.behaviour_log.push_back(fmt::format("{:7.1f} s  {}", NowS(), m.message));
     }
     last_state_ = m.state;
+  });
+  e.Subscribe<message::MissionStatus>("mission/status", [this](const message::MissionStatus& m) {
+    const bool reached = m.state == message::MissionState::kGoalReached &&
+                         last_mission_ != message::MissionState::kGoalReached;
+    last_mission_ = m.state;
+    if (reached && goal_ && result_.ended.empty()) SendGoalAhead(*goal_);
   });
   if (measuring_) {
     const int coaxial = setup.robot.camera.coaxial_sensor;
@@ -439,6 +450,7 @@ void Run::OnRecovery(const Recovery& r) {
 // Keeps the robot travelling until the kidnap: a goal a third of a closed ring ahead (the
 // way on is then the shorter one, so the route does not reverse the robot), or the far end
 // of an open one (a goal past an open ring's end would be a few edges behind the robot).
+// Reached with travel still to watch, the next is set from there (the mission status).
 void Run::SendGoalAhead(const Recovery& r) {
   const map::Ring& ring = map_.ring(ring_);
   const int n = ring.EdgeCount();
@@ -446,9 +458,11 @@ void Run::SendGoalAhead(const Recovery& r) {
                                 : (r.edge < n / 2 ? n - 1 : 0);
   message::MissionGoal goal;
   goal.header.stamp_ns = stack_.executor().NowNs();
-  goal.goal_id = "far";
+  goal.goal_id = kGoalId;
   goal.target = fmt::format("{}/{}", r.ring_id, ahead);
   goals_.Publish(goal);
+  goal_ = r;
+  goal_->edge = ahead;
 }
 
 // After each step of the world: the kidnap, the distance kept going, and the true trace (the
