@@ -233,6 +233,7 @@ HallwayBehaviour::HallwayBehaviour(HallwayBehaviourConfig config)
   require(c.frames_per_door >= 0, "frames_per_door must be >= 0");
   require(c.max_view_offset_in >= 0.0 && c.max_view_offset_in < c.envelope_offset_in,
           "max_view_offset_in must be in [0, envelope_offset_in)");
+  require(c.view_offset_after_in >= 0.0, "view_offset_after_in must be >= 0");
   require(c.camera_fov_deg > 0.0 && c.camera_fov_deg < 180.0, "camera_fov_deg must be in (0, 180)");
   require(c.camera_frame_period_s > 0.0, "camera_frame_period_s must be > 0");
   require(c.door_in_view_in >= 0.0 && c.min_view_speed_ftps > 0.0,
@@ -276,6 +277,7 @@ void HallwayBehaviour::OnScan(const std::vector<SonarRange>& scan, double now_s)
       estimate_.left.distance_in <= side_range && estimate_.right.distance_in <= side_range &&
       estimate_.hallway_width_in > 2.0 * config_.follower.stop_distance_in) {
     hallway_width_in_ = estimate_.hallway_width_in;
+    NoteWidth(hallway_width_in_);
   }
   if (!std::isfinite(wall)) {
     oblique_scans_ = 0;
@@ -300,6 +302,24 @@ void HallwayBehaviour::OnScan(const std::vector<SonarRange>& scan, double now_s)
   wall_normal_rad_ = normal;
   wall_odometer_in_ = previous_odometer_in_;
   wall_time_s_ = now_s;
+}
+
+void HallwayBehaviour::NoteWidth(double width_in) {
+  const bool narrow = ViewOffsetIn(config_, width_in) != 0.0;
+  while (!narrow_widths_.empty() &&
+         narrow_widths_.front().first < travel_in_ - config_.view_offset_after_in) {
+    narrow_widths_.pop_front();
+  }
+  if (narrow) narrow_widths_.emplace_back(travel_in_, width_in);
+  if (narrow == narrow_) {
+    narrow_disagree_since_in_ = -1.0;
+    return;
+  }
+  if (narrow_disagree_since_in_ < 0.0) narrow_disagree_since_in_ = travel_in_;
+  if (travel_in_ - narrow_disagree_since_in_ >= config_.view_offset_after_in) {
+    narrow_ = narrow;
+    narrow_disagree_since_in_ = -1.0;
+  }
 }
 
 void HallwayBehaviour::Report(BehaviourOutput& out) const {
@@ -564,7 +584,12 @@ void HallwayBehaviour::Follow(double speed, double width_in, double wall_in, dou
   if (scan_fresh_ && !std::isfinite(wall_in)) UpdateTrack(width_in);
   scan_fresh_ = false;
   // Steered to the line the camera wants: the axis, or off it in a narrow hallway.
-  target_offset_in_ = ViewOffsetIn(config_, width_in);
+  target_offset_in_ = 0.0;
+  if (narrow_ && !narrow_widths_.empty()) {
+    double least_in = narrow_widths_.front().second;
+    for (const auto& [travel_in, w] : narrow_widths_) least_in = std::min(least_in, w);
+    target_offset_in_ = ViewOffsetIn(config_, least_in);
+  }
   HallwayEstimate steer_on = estimate_;
   steer_on.offset_valid = tracker_.offset_known();
   steer_on.lateral_offset_in = tracker_.offset_in() - target_offset_in_;
@@ -608,6 +633,7 @@ BehaviourOutput HallwayBehaviour::Step(double commanded_speed_ftps, double odome
   if (have_odometer_) {
     tracker_.Predict(odometer_in - previous_odometer_in_,
                      WrapPi(odometry_heading_rad - previous_heading_rad_));
+    travel_in_ += std::abs(odometer_in - previous_odometer_in_);
   }
   have_odometer_ = true;
   previous_odometer_in_ = odometer_in;

@@ -30,7 +30,9 @@
 //
 // Standard library only; the node feeds scans and odometry and sends the set-points.
 
+#include <deque>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "locomotion/hallway_follower.h"
@@ -180,6 +182,9 @@ struct HallwayBehaviourConfig {
   // values above), and never nearer the far wall than the follower's stop distance. The
   // envelope of §6.4.2 is then judged about that line. 0: the base keeps to the axis.
   double max_view_offset_in = 0.0;
+  // A hallway is taken for narrow (or wide again) only once every width measured over this
+  // much travel says so: a wall that juts out for a few feet, or an alcove, changes nothing.
+  double view_offset_after_in = 240.0;
 };
 
 // The speed cap of the camera-view pacing above at `range_in` from the mapped wall
@@ -265,6 +270,8 @@ class HallwayBehaviour {
   bool NotNearer(const WallLine& wall, int side, double half_width_in) const;
   // ... from a scan with both walls in range.
   void TrackBothWalls(double width_in);
+  // A width measured on a plain stretch, for the narrow-hallway state.
+  void NoteWidth(double width_in);
   // Whether a wall ahead at wall_in spans the hallway (an end, a corner, a junction) rather
   // than standing in it (an obstacle): judged on the newest scan.
   // `wall_in` is along the travel direction, `normal_rad` the wall's angle from across.
@@ -282,6 +289,14 @@ class HallwayBehaviour {
   std::vector<SonarRange> scan_;
   double hallway_width_in_ = 0.0;  // last measured, 0 until one is
   double target_offset_in_ = 0.0;  // the line Follow steers to (ViewOffsetIn)
+  // The narrow-hallway state behind it: the travel so far (either way), whether the hallway
+  // is narrow, the narrow widths measured over the last view_offset_after_in of travel (the
+  // line is set by the least: an alcove's wider reading does not move it), and the travel
+  // at which the widths began to say otherwise than the state (< 0: they agree).
+  double travel_in_ = 0.0;
+  bool narrow_ = false;
+  std::deque<std::pair<double, double>> narrow_widths_;  // (travel, width) in
+  double narrow_disagree_since_in_ = -1.0;
 
   // Wall ahead in the travel direction, as last seen, and the odometer then.
   bool wall_known_ = false;

@@ -158,11 +158,15 @@ TEST(HallwayBehaviourTest, RidesOffTheAxisAwayFromTheMappedWallWhereTheHallwayIs
   off.frames_per_door = 0;
   EXPECT_DOUBLE_EQ(ViewOffsetIn(off, 88.0), 0.0);
 
-  // Closed loop from the axis of an 88 in corridor: the base settles 10 in off it, away
-  // from the camera's wall, inside the envelope judged about that line, at the pace of
-  // 54 in from the wall (2.4 ft/s, not the axis's 0.96).
+  // Closed loop from the axis of an 88 in corridor: after 240 in of travel the base takes
+  // the corridor for narrow and settles 10 in off the axis, away from the camera's wall,
+  // inside the envelope judged about that line, at the pace of 54 in from the wall (2.4
+  // ft/s, not the axis's 0.96).
   Drive narrow(fake::Hallway(44), c);
-  narrow.Until([] { return false; }, 20.0);
+  narrow.x = -950.0;
+  EXPECT_TRUE(narrow.Until([&] { return narrow.odometer >= 230.0; }, 60.0));
+  EXPECT_DOUBLE_EQ(narrow.out.target_offset_in, 0.0);  // not yet
+  narrow.Until([] { return false; }, 25.0);
   EXPECT_NEAR(narrow.y, -10.0, 1.0);
   EXPECT_NEAR(narrow.out.lateral_offset_in, narrow.y, 1.0);
   EXPECT_DOUBLE_EQ(narrow.out.target_offset_in, -10.0);
@@ -172,19 +176,80 @@ TEST(HallwayBehaviourTest, RidesOffTheAxisAwayFromTheMappedWallWhereTheHallwayIs
   // Started 8 in nearer the camera's wall than the axis (slow there: 36 in from the wall)
   // it crosses to the same line.
   Drive near(fake::Hallway(44), c);
+  near.x = -950.0;
   near.y = 8.0;
-  EXPECT_TRUE(near.Until([&] { return near.y <= -9.0; }, 40.0)) << near.y;
+  EXPECT_TRUE(near.Until([&] { return near.y <= -9.0; }, 90.0)) << near.y;
   EXPECT_LE(near.x, 900.0);
   // In a 96 in corridor it stops short of the cap, where the pace allows the top speed.
   Drive mid(fake::Hallway(48), c);
-  mid.Until([] { return false; }, 20.0);
+  mid.x = -950.0;
+  mid.Until([] { return false; }, 40.0);
   EXPECT_NEAR(mid.y, -(top_range_in - 48.0), 1.0);
-  EXPECT_NEAR(std::abs(mid.out.linear_ftps), 2.6, 1e-9);
+  EXPECT_NEAR(std::abs(mid.out.linear_ftps), 2.6, 0.01);
   // In the 120 in hallway it keeps to the axis.
   Drive wide(fake::Hallway(60), c);
   wide.Until([] { return false; }, 20.0);
   EXPECT_NEAR(wide.y, 0.0, 0.5);
   EXPECT_DOUBLE_EQ(wide.out.target_offset_in, 0.0);
+}
+
+TEST(HallwayBehaviourTest, AWallThatJutsOutForAFewFeetOrAnAlcoveLeavesTheLineAsItWas) {
+  HallwayBehaviourConfig c;
+  c.frames_per_door = 3;
+  c.max_view_offset_in = 10.0;
+  // A 120 in hallway whose camera wall juts out 20 in for 120 in of its length: 100 in
+  // there, narrow, but for less than the 240 in of travel the state asks for.
+  Drive jut({{{-1000, 60}, {0, 60}},
+             {{0, 60}, {0, 40}},
+             {{0, 40}, {120, 40}},
+             {{120, 40}, {120, 60}},
+             {{120, 60}, {1000, 60}},
+             {{-1000, -60}, {1000, -60}}},
+            c);
+  double most_off = 0.0;
+  EXPECT_TRUE(jut.Until(
+      [&] {
+        most_off = std::max(most_off, std::abs(jut.out.target_offset_in));
+        return jut.x > 400.0;
+      },
+      60.0));
+  EXPECT_EQ(most_off, 0.0);
+  // The same jut 600 in long is a narrow stretch: the line moves off the axis once the
+  // base has travelled 240 in along it (the side sensors see the jut from a few inches
+  // before its face).
+  Drive long_jut({{{-1000, 60}, {0, 60}},
+                  {{0, 60}, {0, 40}},
+                  {{0, 40}, {600, 40}},
+                  {{600, 40}, {600, 60}},
+                  {{600, 60}, {1000, 60}},
+                  {{-1000, -60}, {1000, -60}}},
+                 c);
+  double first_off_x = 0.0;
+  EXPECT_TRUE(long_jut.Until(
+      [&] {
+        first_off_x = long_jut.x;
+        return long_jut.out.target_offset_in < 0.0;
+      },
+      60.0));
+  EXPECT_GT(first_off_x, 220.0);
+  EXPECT_LT(first_off_x, 300.0);
+  // In an 88 in corridor taken for narrow, a 72 in alcove 40 in deep on the camera's side
+  // keeps the line where it was.
+  std::vector<Segment> alcove = {{{-1000, 44}, {0, 44}}, {{0, 44}, {0, 84}},
+                                 {{0, 84}, {72, 84}},    {{72, 84}, {72, 44}},
+                                 {{72, 44}, {1000, 44}}, {{-1000, -44}, {1000, -44}}};
+  Drive past(alcove, c);
+  past.x = -900.0;
+  EXPECT_TRUE(past.Until([&] { return past.out.target_offset_in < 0.0; }, 60.0));
+  EXPECT_LT(past.x, -200.0);
+  double least_off = 10.0;
+  EXPECT_TRUE(past.Until(
+      [&] {
+        least_off = std::min(least_off, std::abs(past.out.target_offset_in));
+        return past.x > 300.0;
+      },
+      60.0));
+  EXPECT_EQ(least_off, 10.0);
 }
 
 // An 88 in corridor whose camera wall has a door alcove 40 in deep and 72 in long at
@@ -517,6 +582,9 @@ TEST(HallwayBehaviourTest, RejectsBadConfig) {
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
   c = {};
   c.max_view_offset_in = 12.0;  // the whole envelope: a line on its edge
+  EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
+  c = {};
+  c.view_offset_after_in = -1.0;
   EXPECT_THROW(HallwayBehaviour{c}, std::invalid_argument);
 }
 

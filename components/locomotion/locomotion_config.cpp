@@ -53,6 +53,7 @@ LocomotionConfig LoadLocomotionConfig(const StrictYaml& c, const sensing::RobotC
   if (out.behaviour.max_view_offset_in >= out.behaviour.envelope_offset_in) {
     h.Fail("max_view_offset_in", "must be less than envelope_offset_in");
   }
+  out.behaviour.view_offset_after_in = h.Get<double>("view_offset_after_in", 0.0, 1200.0, "in");
   out.behaviour.stall_speed_ftps = h.Get<double>("stall_speed_ftps", 0.05, 5.0, "ft/s");
   out.behaviour.stall_time_s = h.Get<double>("stall_time_s", 0.1, 10.0, "s");
   out.behaviour.stall_travel_in = h.Get<double>("stall_travel_in", 0.01, 12.0, "in");
