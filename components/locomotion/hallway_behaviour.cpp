@@ -583,9 +583,11 @@ void HallwayBehaviour::Follow(double speed, double width_in, double wall_in, dou
   // Where a wall ahead reaches into the side sensors' view, odometry carries the track.
   if (scan_fresh_ && !std::isfinite(wall_in)) UpdateTrack(width_in);
   scan_fresh_ = false;
-  // Steered to the line the camera wants: the axis, or off it in a narrow hallway.
+  // Steered to the line the camera wants: the axis, or off it in a narrow hallway. Before a
+  // wall ahead (a corner, a hallway end) back to the axis: the stop on the new axis and the
+  // reading of the corner from the side sensors are made from there.
   target_offset_in_ = 0.0;
-  if (narrow_ && !narrow_widths_.empty()) {
+  if (narrow_ && !narrow_widths_.empty() && !std::isfinite(wall_in)) {
     double least_in = narrow_widths_.front().second;
     for (const auto& [travel_in, w] : narrow_widths_) least_in = std::min(least_in, w);
     target_offset_in_ = ViewOffsetIn(config_, least_in);

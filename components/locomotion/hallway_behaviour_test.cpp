@@ -173,6 +173,22 @@ TEST(HallwayBehaviourTest, RidesOffTheAxisAwayFromTheMappedWallWhereTheHallwayIs
   EXPECT_TRUE(narrow.out.in_envelope);
   EXPECT_NEAR(std::abs(narrow.out.linear_ftps), ViewPacedSpeedFtps(c, 54.0), 0.05);
   EXPECT_GT(std::abs(narrow.out.linear_ftps), 2.3);
+  // With the corridor's end known ahead (from about 100 in) it steers back toward the
+  // axis, and is about half-way there when it stops before the end.
+  const double end_x = narrow.x + 500.0;
+  narrow.walls.push_back({{end_x, -44}, {end_x, 44}});
+  double off_at_in = 0.0;
+  EXPECT_TRUE(narrow.Until(
+      [&] {
+        if (off_at_in == 0.0 && narrow.out.target_offset_in == 0.0) off_at_in = end_x - narrow.x;
+        return narrow.out.reversed;
+      },
+      30.0));
+  EXPECT_GT(off_at_in, 80.0);
+  EXPECT_LT(off_at_in, 130.0);
+  EXPECT_DOUBLE_EQ(narrow.out.target_offset_in, 0.0);
+  EXPECT_GT(narrow.y, -7.0);
+  EXPECT_NEAR(narrow.x, end_x - 44.0, 4.0);
   // Started 8 in nearer the camera's wall than the axis (slow there: 36 in from the wall)
   // it crosses to the same line.
   Drive near(fake::Hallway(44), c);
