@@ -28,6 +28,10 @@ constexpr double kFlankToleranceIn = 12.0;
 constexpr double kObstacleHoldIn = 12.0;
 // A wall seen nearer than the track puts it by more than this is not a recess.
 constexpr double kNearerIn = 2.0;
+// Off the axis, the base steers back to it once something is this near ahead: the line
+// settles in about 5 length scales (180 in), so the base is back on the axis before a
+// corner is read (about 100 in from it) or the base stops before it.
+constexpr double kAxisReturnIn = 240.0;
 
 }  // namespace
 
@@ -583,11 +587,14 @@ void HallwayBehaviour::Follow(double speed, double width_in, double wall_in, dou
   // Where a wall ahead reaches into the side sensors' view, odometry carries the track.
   if (scan_fresh_ && !std::isfinite(wall_in)) UpdateTrack(width_in);
   scan_fresh_ = false;
-  // Steered to the line the camera wants: the axis, or off it in a narrow hallway. Before a
-  // wall ahead (a corner, a hallway end) back to the axis: the stop on the new axis and the
-  // reading of the corner from the side sensors are made from there.
+  // Steered to the line the camera wants: the axis, or off it in a narrow hallway. With
+  // something within kAxisReturnIn ahead, or a wall known ahead (a corner, a hallway end),
+  // back to the axis: the corner is read, and the base stops, from there.
   target_offset_in_ = 0.0;
-  if (narrow_ && !narrow_widths_.empty() && !std::isfinite(wall_in)) {
+  const double wall_seen_in =
+      travel_sign_ > 0 ? estimate_.wall_forward_in : estimate_.wall_backward_in;
+  if (narrow_ && !narrow_widths_.empty() && !std::isfinite(wall_in) &&
+      !(wall_seen_in < kAxisReturnIn)) {
     double least_in = narrow_widths_.front().second;
     for (const auto& [travel_in, w] : narrow_widths_) least_in = std::min(least_in, w);
     target_offset_in_ = ViewOffsetIn(config_, least_in);
