@@ -76,12 +76,13 @@ TEST(LocomotionConfigTest, AStallTravelTheStallSpeedCoversInTheStallTimeIsRefuse
 
 TEST(LocomotionConfigTest, AViewOffsetReachingTheEnvelopeIsRefused) {
   const std::string why =
-      Refusal(Replace(Shipped(), "max_view_offset_in: 10", "max_view_offset_in: 12"),
+      Refusal(Replace(Shipped(), "max_view_offset_in: 0", "max_view_offset_in: 12"),
               "a line on the envelope's edge");
   EXPECT_THAT(why, HasSubstr("locomotion.yaml:"));
   EXPECT_THAT(why, HasSubstr("max_view_offset_in"));
   EXPECT_THAT(why, HasSubstr("must be less than envelope_offset_in"));
-  EXPECT_DOUBLE_EQ(Load(Shipped()).behaviour.max_view_offset_in, 10.0);
+  EXPECT_DOUBLE_EQ(Load(Shipped()).behaviour.max_view_offset_in, 0.0);  // on the axis, as shipped
+  EXPECT_DOUBLE_EQ(Load(Shipped()).behaviour.view_offset_after_in, 240.0);
 }
 
 TEST(LocomotionConfigTest, SerialDeviceIsRefusedAsNotBuilt) {
