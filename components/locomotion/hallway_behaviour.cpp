@@ -28,9 +28,9 @@ constexpr double kFlankToleranceIn = 12.0;
 constexpr double kObstacleHoldIn = 12.0;
 // A wall seen nearer than the track puts it by more than this is not a recess.
 constexpr double kNearerIn = 2.0;
-// Off the axis, the base steers back to it once something is this near ahead: the line
-// settles in about 5 length scales (180 in), so the base is back on the axis before a
-// corner is read (about 100 in from it) or the base stops before it.
+// Off the axis, the base steers back to it once the front sensors agree on a wall this
+// near ahead: the line settles in about 5 length scales (180 in), so the base is back on
+// the axis before a corner is read (about 100 in from it) or the base stops before it.
 constexpr double kAxisReturnIn = 240.0;
 
 }  // namespace
@@ -587,9 +587,9 @@ void HallwayBehaviour::Follow(double speed, double width_in, double wall_in, dou
   // Where a wall ahead reaches into the side sensors' view, odometry carries the track.
   if (scan_fresh_ && !std::isfinite(wall_in)) UpdateTrack(width_in);
   scan_fresh_ = false;
-  // Steered to the line the camera wants: the axis, or off it in a narrow hallway. With
-  // something within kAxisReturnIn ahead, or a wall known ahead (a corner, a hallway end),
-  // back to the axis: the corner is read, and the base stops, from there.
+  // Steered to the line the camera wants: the axis, or off it in a narrow hallway. With a
+  // wall the scan shows within kAxisReturnIn ahead, or a wall ahead believed (a corner, a
+  // hallway end), back to the axis: the corner is read, and the base stops, from there.
   target_offset_in_ = 0.0;
   const double wall_seen_in =
       travel_sign_ > 0 ? estimate_.wall_forward_in : estimate_.wall_backward_in;

@@ -178,10 +178,10 @@ struct HallwayBehaviourConfig {
   double min_view_speed_ftps = 0.5;
   // Riding off the axis for the camera. In a hallway too narrow for the pacing above to
   // allow the top speed on its axis, the base is steered up to this far from the axis,
-  // away from the mapped wall, toward the range at which it does (55.5 in with the
+  // away from the mapped wall, toward the range at which it does (55.4 in with the
   // values above), and never nearer the far wall than the follower's stop distance; with
-  // a wall known ahead (a corner, a hallway end) it steers back to the axis. The envelope
-  // of §6.4.2 is judged about the line steered to. 0: the base keeps to the axis.
+  // a wall ahead in sight (a corner, a hallway end) it steers back to the axis. The
+  // envelope of §6.4.2 is judged about the line steered to. 0: the base keeps to the axis.
   double max_view_offset_in = 0.0;
   // A hallway is taken for narrow (or wide again) only once every width measured over this
   // much travel says so: a wall that juts out for a few feet, or an alcove, changes nothing.
