@@ -209,19 +209,20 @@ TEST(HallwayBehaviourTest, RidesOffTheAxisAwayFromTheMappedWallWhereTheHallwayIs
   EXPECT_DOUBLE_EQ(wide.out.target_offset_in, 0.0);
 }
 
+// A 120 in hallway whose camera wall juts out 20 in from x = 0 to x = `length_in`.
+std::vector<Segment> JutHallway(double length_in) {
+  return {{{-1000, 60}, {0, 60}},        {{0, 60}, {0, 40}},
+          {{0, 40}, {length_in, 40}},    {{length_in, 40}, {length_in, 60}},
+          {{length_in, 60}, {1000, 60}}, {{-1000, -60}, {1000, -60}}};
+}
+
 TEST(HallwayBehaviourTest, AWallThatJutsOutForAFewFeetOrAnAlcoveLeavesTheLineAsItWas) {
   HallwayBehaviourConfig c;
   c.frames_per_door = 3;
   c.max_view_offset_in = 10.0;
   // A 120 in hallway whose camera wall juts out 20 in for 120 in of its length: 100 in
   // there, narrow, but for less than the 240 in of travel the state asks for.
-  Drive jut({{{-1000, 60}, {0, 60}},
-             {{0, 60}, {0, 40}},
-             {{0, 40}, {120, 40}},
-             {{120, 40}, {120, 60}},
-             {{120, 60}, {1000, 60}},
-             {{-1000, -60}, {1000, -60}}},
-            c);
+  Drive jut(JutHallway(120.0), c);
   double most_off = 0.0;
   EXPECT_TRUE(jut.Until(
       [&] {
@@ -233,13 +234,7 @@ TEST(HallwayBehaviourTest, AWallThatJutsOutForAFewFeetOrAnAlcoveLeavesTheLineAsI
   // The same jut 600 in long is a narrow stretch: the line moves off the axis once the
   // base has travelled 240 in along it (the side sensors see the jut from a few inches
   // before its face).
-  Drive long_jut({{{-1000, 60}, {0, 60}},
-                  {{0, 60}, {0, 40}},
-                  {{0, 40}, {600, 40}},
-                  {{600, 40}, {600, 60}},
-                  {{600, 60}, {1000, 60}},
-                  {{-1000, -60}, {1000, -60}}},
-                 c);
+  Drive long_jut(JutHallway(600.0), c);
   double first_off_x = 0.0;
   EXPECT_TRUE(long_jut.Until(
       [&] {
