@@ -315,6 +315,12 @@ void HallwayBehaviour::NoteWidth(double width_in) {
     narrow_widths_.pop_front();
   }
   if (narrow) narrow_widths_.emplace_back(travel_in_, width_in);
+  if (!narrow_widths_.empty()) {
+    least_narrow_width_in_ = narrow_widths_.front().second;
+    for (const auto& [travel_in, w] : narrow_widths_) {
+      least_narrow_width_in_ = std::min(least_narrow_width_in_, w);
+    }
+  }
   if (narrow == narrow_) {
     narrow_disagree_since_in_ = -1.0;
     return;
@@ -595,9 +601,7 @@ void HallwayBehaviour::Follow(double speed, double width_in, double wall_in, dou
       travel_sign_ > 0 ? estimate_.wall_forward_in : estimate_.wall_backward_in;
   if (narrow_ && !narrow_widths_.empty() && !std::isfinite(wall_in) &&
       !(wall_seen_in < kAxisReturnIn)) {
-    double least_in = narrow_widths_.front().second;
-    for (const auto& [travel_in, w] : narrow_widths_) least_in = std::min(least_in, w);
-    target_offset_in_ = ViewOffsetIn(config_, least_in);
+    target_offset_in_ = ViewOffsetIn(config_, least_narrow_width_in_);
   }
   HallwayEstimate steer_on = estimate_;
   steer_on.offset_valid = tracker_.offset_known();

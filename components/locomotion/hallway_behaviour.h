@@ -297,6 +297,7 @@ class HallwayBehaviour {
   double travel_in_ = 0.0;
   bool narrow_ = false;
   std::deque<std::pair<double, double>> narrow_widths_;  // (travel, width) in
+  double least_narrow_width_in_ = 0.0;                   // the least of them
   double narrow_disagree_since_in_ = -1.0;
 
   // Wall ahead in the travel direction, as last seen, and the odometer then.
