@@ -40,7 +40,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 100000.0));
   app.add_option("--write-error-model", o.error_model_out,
                  "With --measure-ft: write the measured rates as an error model file");
-  app.add_flag("--trace", o.trace, "Print each run's sensed edges beside the map edges passed");
+  app.add_flag("--trace", o.trace,
+               "Print each run's sensed edges beside the map edges passed, its behaviour and "
+               "belief changes, and where the base touched a wall");
   app.add_option("--path-png", o.path_png,
                  "Draw each run's true path over the map into PREFIX_seed<N>.png");
   if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;

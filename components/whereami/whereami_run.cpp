@@ -161,6 +161,7 @@ class Run {
   static constexpr const char* kGoalId = "far";
   double first_pose_in_ = -1.0;
   int last_view_edge_ = -1;
+  int traced_collisions_ = 0;  // contacts already written to the trace
   std::string last_belief_;
   message::LocomotionState last_state_ = message::LocomotionState::kStopped;
   // The place of the last goal sent: when the robot reaches it with travel still to watch,
@@ -481,6 +482,14 @@ void Run::AfterStep() {
   }
   if (!options_.trace) return;
   const virtual_robot::SimTruth truth = sim_.Truth();
+  if (truth.collisions > traced_collisions_) {
+    traced_collisions_ = truth.collisions;
+    result_.behaviour_log.push_back(fmt::format(
+        "{:7.1f} s  the base touches a wall: edge {} + {:.0f} in, {:+.1f} in off the axis, "
+        "heading {:+.1f} deg, {:.0f} in from the nearest corner",
+        NowS(), truth.edge_index, truth.offset_in, truth.lateral_offset_in,
+        RadToDeg(truth.heading_error_rad), truth.corner_distance_in));
+  }
   const int e = view_.ViewEdge(ring_, truth.edge_index);
   if (e == last_view_edge_) return;
   last_view_edge_ = e;
