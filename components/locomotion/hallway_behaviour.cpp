@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "common/units.h"
@@ -89,6 +90,12 @@ bool HallwayTracker::UpdateOffset(double offset_in, bool recess) {
   rejected_ = 0;
   EndRecessRun();
   Correct(1.0, 0.0, v, s);
+  return true;
+}
+
+bool HallwayTracker::UpdateScan(double offset_in, double heading_rad, bool recess) {
+  if (!UpdateOffset(offset_in, recess)) return false;
+  UpdateHeading(heading_rad);
   return true;
 }
 
@@ -356,7 +363,8 @@ void HallwayBehaviour::TrackBothWalls(double width_in) {
   // Both walls give the offset and the heading. Where one of them is set back (a door, an
   // alcove) or stands out (a pilaster), the scan's offset is an outlier and its heading is
   // fitted to the same wrong wall; the other wall alone, with the width, still places the
-  // base. A wall neither explains restarts the track only as HallwayTracker says.
+  // base. A wall neither explains restarts the track only as HallwayTracker says, and then
+  // from the scan's heading too: round a bend the new stretch's walls are such walls.
   const double half = width_in / 2.0;
   const WallLine& l = estimate_.left;
   const WallLine& r = estimate_.right;
@@ -364,9 +372,10 @@ void HallwayBehaviour::TrackBothWalls(double width_in) {
   const bool single = tracker_.offset_known() && hallway_width_in_ > 0.0;
   const bool l_ok = single && l.valid && l.inliers >= 2;
   const bool r_ok = single && r.valid && r.inliers >= 2;
+  const double heading = estimate_.heading_valid ? estimate_.heading_error_rad
+                                                 : std::numeric_limits<double>::quiet_NaN();
   if (estimate_.offset_valid && tracker_.Consistent(estimate_.lateral_offset_in)) {
-    tracker_.UpdateOffset(estimate_.lateral_offset_in);
-    if (estimate_.heading_valid) tracker_.UpdateHeading(estimate_.heading_error_rad);
+    tracker_.UpdateScan(estimate_.lateral_offset_in, heading);
     return;
   }
   if (l_ok && tracker_.Consistent(half - l.distance_in)) {
@@ -379,7 +388,7 @@ void HallwayBehaviour::TrackBothWalls(double width_in) {
   }
   if (!estimate_.offset_valid) return;
   const bool recess = (!l_ok || NotNearer(l, +1, half)) && (!r_ok || NotNearer(r, -1, half));
-  tracker_.UpdateOffset(estimate_.lateral_offset_in, recess);
+  tracker_.UpdateScan(estimate_.lateral_offset_in, heading, recess);
 }
 
 bool HallwayBehaviour::TurnInPlace(double odometry_heading_rad, double dt_s, BehaviourOutput& out) {

@@ -88,6 +88,11 @@ class HallwayTracker {
   // False when the measurement is set aside as an outlier. `recess`: the measurement puts
   // no wall nearer than the track does (an outlier of that kind is held off longer).
   bool UpdateOffset(double offset_in, bool recess = false);
+  // One scan's fit of both walls: its offset as UpdateOffset, and its heading whenever the
+  // offset is taken (NaN: the scan fitted none). So a track that the offset restarts (a new
+  // stretch round a bend, a base pushed aside) starts again from the scan's heading, not
+  // from heading 0 with only odometry and later offsets to find it.
+  bool UpdateScan(double offset_in, double heading_rad, bool recess = false);
   // Whether a measurement would pass the gate (no side effects).
   bool Consistent(double offset_in) const;
   void UpdateHeading(double heading_rad);

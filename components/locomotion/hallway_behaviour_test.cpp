@@ -338,6 +338,41 @@ TEST(HallwayTrackerTest, ReadingsThatKeepDriftingFartherRestartTheTrackEarly) {
   EXPECT_NEAR(t.offset_in(), -slope * restarted_at, 1e-9);
 }
 
+TEST(HallwayTrackerTest, AScanThatRestartsTheTrackRestartsItsHeadingToo) {
+  // The base entered a new stretch round a 40 deg bend: the track holds the last stretch
+  // (on the axis, heading 0), the scans read the base 20 in off the new axis and turned
+  // 40 deg to it. Once they restart the track it starts from their heading, with the
+  // uncertainty of a start and of one scan's fit, not from 0.
+  HallwayTracker t = SettledTrack(0.0);
+  const HallwayTrackerNoise noise;
+  const double h = DegToRad(40.0);
+  int restarted = 0;
+  for (int i = 1; i <= noise.reinit_after && restarted == 0; ++i) {
+    t.Predict(1.0, 0.0);
+    if (t.UpdateScan(20.0 + i * std::sin(h), h)) restarted = i;
+  }
+  ASSERT_EQ(restarted, noise.reinit_after);
+  const double p0 = std::pow(noise.initial_heading_sigma_deg, 2);
+  const double r = std::pow(noise.heading_sigma_deg, 2);
+  EXPECT_NEAR(t.heading_rad(), h * p0 / (p0 + r), 1e-9);
+  EXPECT_FALSE(t.heading_known());
+  // The next scans, and the offsets' own slope, settle it on the new stretch.
+  for (int i = 1; i <= 30; ++i) {
+    t.Predict(1.0, 0.0);
+    t.UpdateScan(20.0 + (noise.reinit_after + i) * std::sin(h), h);
+  }
+  EXPECT_TRUE(t.heading_known());
+  EXPECT_NEAR(t.heading_rad(), h, DegToRad(1.0));
+  // A scan with no heading fit restarts the track at heading 0 as before.
+  HallwayTracker u = SettledTrack(0.0);
+  for (int i = 1; i <= noise.reinit_after; ++i) {
+    u.Predict(1.0, 0.0);
+    u.UpdateScan(20.0, std::numeric_limits<double>::quiet_NaN());
+  }
+  EXPECT_DOUBLE_EQ(u.heading_rad(), 0.0);
+  EXPECT_DOUBLE_EQ(u.offset_in(), 20.0);
+}
+
 TEST(HallwayBehaviourTest, TurnsLeftAtAConvexCornerOntoTheNewAxis) {
   Drive r(LeftCorner());
   // Done once it has gone 10 ft up the new hallway.
