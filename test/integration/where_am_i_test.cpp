@@ -484,8 +484,8 @@ class TeachingBuildingTest : public RealBuildingTest {
 };
 
 TEST_F(TeachingBuildingTest, StartRecoversTheTruePose) {
-  // Seed 12 (edge 24 + 106.2 in, in the corridor): correct in process after 13 edges, 133.1
-  // ft, 86.2 s, one hallway end and no turn on the way, in the realistic hallways the virtual
+  // Seed 12 (edge 24 + 106.2 in, in the corridor): correct in process after 13 edges, 122.4
+  // ft, 83.7 s, one hallway end and no turn on the way, in the realistic hallways the virtual
   // robot draws (configs/virtual_robot.yaml, realism on); the quickest corridor start of seeds
   // 1-40 there. Seed 20, used before, now takes 27 edges and 286 ft in process (and 36 edges
   // once deployed); seed 54 starts in the entrance lobby, which the ring does not model as a
