@@ -386,8 +386,8 @@ TEST_F(KidnapBatchTest, DeployedKidnapsAreGivenUpAndRecovered) {
 // the in-process one (frame and scan timing, discovery) and may take another route: teaching
 // seed 28, 33 edges in process, ended 2 edges off in one CI run; seed 20 once went on for 36
 // edges and declared edge 91 for 96. A declared pose on these floors carries a stated risk
-// (in process, seeds 1-100: 5 of 89 declared poses wrong on the teaching building's main
-// corridor, 2 of 64 on the science hall; docs/whereami.md), so what is asserted is the promise that
+// (in process, seeds 1-100: 6 of 89 declared poses wrong on the teaching building's main
+// corridor, 3 of 67 on the science hall; docs/whereami.md), so what is asserted is the promise that
 // goes with it: the first pose names the true place, or the robot, sent on ahead, gives the wrong
 // pose up within kWrongSpellEdges edges of the map and the next pose it declares names the true
 // place.
