@@ -7,6 +7,47 @@
 
 namespace stickrep::locomotion {
 
+namespace {
+
+// The hallway keys of `h` into `b`: every one required, or (a floor's own block) only those
+// given, over the values `b` holds; the keys' bounds and the checks between them either way.
+void LoadHallway(const StrictYaml& h, bool every_key, HallwayBehaviourConfig& b) {
+  const auto read = [&](const char* key, double lo, double hi, const char* unit, double& to) {
+    if (every_key || h.Has(key)) to = h.Get<double>(key, lo, hi, unit);
+  };
+  HallwayFollowerConfig& f = b.follower;
+  read("length_scale_in", 6.0, 240.0, "in", f.length_scale_in);
+  read("max_correction_heading_deg", 0.5, 30.0, "deg", f.max_correction_heading_deg);
+  read("stop_distance_in", 12.0, 120.0, "in", f.stop_distance_in);
+  read("swept_clearance_in", 0.0, 36.0, "in", f.swept_clearance_in);
+  read("max_accel_ftps2", 0.1, 10.0, "ft/s^2", f.max_accel_ftps2);
+  read("brake_decel_ftps2", 0.1, 10.0, "ft/s^2", f.brake_decel_ftps2);
+  read("turn_rate_radps", 0.05, 3.0, "rad/s", b.turn_rate_radps);
+  read("scan_timeout_s", 0.1, 5.0, "s", b.scan_timeout_s);
+  read("envelope_offset_in", 1.0, 60.0, "in", b.envelope_offset_in);
+  read("envelope_heading_deg", 0.5, 30.0, "deg", b.envelope_heading_deg);
+  if (every_key || h.Has("frames_per_door")) {
+    b.frames_per_door = h.Get<int>("frames_per_door", 0, 20, "frames");
+  }
+  read("min_view_speed_ftps", 0.1, 5.0, "ft/s", b.min_view_speed_ftps);
+  read("max_view_offset_in", 0.0, 60.0, "in", b.max_view_offset_in);
+  if (b.max_view_offset_in >= b.envelope_offset_in) {
+    h.Fail(h.Has("max_view_offset_in") ? "max_view_offset_in" : "envelope_offset_in",
+           "max_view_offset_in must be less than envelope_offset_in");
+  }
+  read("view_offset_after_in", 0.0, 1200.0, "in", b.view_offset_after_in);
+  read("stall_speed_ftps", 0.05, 5.0, "ft/s", b.stall_speed_ftps);
+  read("stall_time_s", 0.1, 10.0, "s", b.stall_time_s);
+  read("stall_travel_in", 0.01, 12.0, "in", b.stall_travel_in);
+  if (b.stall_travel_in >= FeetToInches(b.stall_speed_ftps) * b.stall_time_s) {
+    h.Fail(h.Has("stall_travel_in") ? "stall_travel_in" : "stall_time_s",
+           "stall_travel_in must be less than stall_time_s at stall_speed_ftps travels");
+  }
+  h.Finish();
+}
+
+}  // namespace
+
 void ApplyRobot(const sensing::RobotConfig& robot, HallwayBehaviourConfig& behaviour) {
   HallwayFollowerConfig& f = behaviour.follower;
   f.sensor_count = robot.sonar_ring.count;
@@ -35,36 +76,26 @@ LocomotionConfig LoadLocomotionConfig(const StrictYaml& c, const sensing::RobotC
   out.limits.wheel_base_in = robot.base.wheel_base_in;
 
   ApplyRobot(robot, out.behaviour);
-  const StrictYaml h = c.Child("hallway");
-  HallwayFollowerConfig& f = out.behaviour.follower;
-  f.length_scale_in = h.Get<double>("length_scale_in", 6.0, 240.0, "in");
-  f.max_correction_heading_deg = h.Get<double>("max_correction_heading_deg", 0.5, 30.0, "deg");
-  f.stop_distance_in = h.Get<double>("stop_distance_in", 12.0, 120.0, "in");
-  f.swept_clearance_in = h.Get<double>("swept_clearance_in", 0.0, 36.0, "in");
-  f.max_accel_ftps2 = h.Get<double>("max_accel_ftps2", 0.1, 10.0, "ft/s^2");
-  f.brake_decel_ftps2 = h.Get<double>("brake_decel_ftps2", 0.1, 10.0, "ft/s^2");
-  out.behaviour.turn_rate_radps = h.Get<double>("turn_rate_radps", 0.05, 3.0, "rad/s");
-  out.behaviour.scan_timeout_s = h.Get<double>("scan_timeout_s", 0.1, 5.0, "s");
-  out.behaviour.envelope_offset_in = h.Get<double>("envelope_offset_in", 1.0, 60.0, "in");
-  out.behaviour.envelope_heading_deg = h.Get<double>("envelope_heading_deg", 0.5, 30.0, "deg");
-  out.behaviour.frames_per_door = h.Get<int>("frames_per_door", 0, 20, "frames");
-  out.behaviour.min_view_speed_ftps = h.Get<double>("min_view_speed_ftps", 0.1, 5.0, "ft/s");
-  out.behaviour.max_view_offset_in = h.Get<double>("max_view_offset_in", 0.0, 60.0, "in");
-  if (out.behaviour.max_view_offset_in >= out.behaviour.envelope_offset_in) {
-    h.Fail("max_view_offset_in", "must be less than envelope_offset_in");
+  LoadHallway(c.Child("hallway"), /*every_key=*/true, out.behaviour);
+  out.behaviour.follower.max_angular_radps =
+      std::min(out.behaviour.follower.max_angular_radps, out.limits.max_angular_rate_radps);
+  if (c.Has("on_maps")) {
+    const StrictYaml maps = c.Child("on_maps");
+    for (const std::string& name : maps.Keys()) {
+      HallwayBehaviourConfig& own = out.on_maps[name] = out.behaviour;
+      LoadHallway(maps.Child(name), /*every_key=*/false, own);
+    }
+    maps.Finish();
   }
-  out.behaviour.view_offset_after_in = h.Get<double>("view_offset_after_in", 0.0, 1200.0, "in");
-  out.behaviour.stall_speed_ftps = h.Get<double>("stall_speed_ftps", 0.05, 5.0, "ft/s");
-  out.behaviour.stall_time_s = h.Get<double>("stall_time_s", 0.1, 10.0, "s");
-  out.behaviour.stall_travel_in = h.Get<double>("stall_travel_in", 0.01, 12.0, "in");
-  if (out.behaviour.stall_travel_in >=
-      FeetToInches(out.behaviour.stall_speed_ftps) * out.behaviour.stall_time_s) {
-    h.Fail("stall_travel_in", "must be less than stall_time_s at stall_speed_ftps travels");
-  }
-  h.Finish();
-  f.max_angular_radps = std::min(f.max_angular_radps, out.limits.max_angular_rate_radps);
   c.Finish();
   return out;
+}
+
+LocomotionConfig ForMap(LocomotionConfig config, const std::string& map_name) {
+  const auto own = config.on_maps.find(map_name);
+  if (own != config.on_maps.end()) config.behaviour = own->second;
+  config.on_maps.clear();
+  return config;
 }
 
 }  // namespace stickrep::locomotion

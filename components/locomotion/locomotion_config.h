@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "common/strict_yaml.h"
@@ -17,11 +18,19 @@ struct LocomotionConfig {
   double command_timeout_s = 0.5;   // no motion command for this long: stop
   DriveLimits limits;
   HallwayBehaviourConfig behaviour;
+  // A floor's own hallway behaviour, where it differs, by the map's name (MapInfo::name):
+  // `behaviour` with the keys of the floor's block in place (ForMap picks one).
+  std::map<std::string, HallwayBehaviourConfig> on_maps;
 };
 
-// Reads the `locomotion` section; every key required, unknown keys rejected (InputError with
-// file, line and key). 'serial' is refused: the LabMate driver is not built.
+// Reads the `locomotion` section; every key required but the `on_maps` block (under each map
+// name, any of the `hallway` keys), unknown keys rejected (InputError with file, line and key).
+// 'serial' is refused: the LabMate driver is not built.
 LocomotionConfig LoadLocomotionConfig(const StrictYaml& section, const sensing::RobotConfig& robot);
+
+// `config` with the hallway behaviour for the map named `map_name`: its on_maps entry where
+// there is one, else the default; on_maps emptied.
+LocomotionConfig ForMap(LocomotionConfig config, const std::string& map_name);
 
 // The behaviour's ring geometry and speed limit from the robot description.
 void ApplyRobot(const sensing::RobotConfig& robot, HallwayBehaviourConfig& behaviour);

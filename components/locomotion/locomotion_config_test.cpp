@@ -85,6 +85,58 @@ TEST(LocomotionConfigTest, AViewOffsetReachingTheEnvelopeIsRefused) {
   EXPECT_DOUBLE_EQ(Load(Shipped()).behaviour.view_offset_after_in, 240.0);
 }
 
+// The shipped text with `block` (lines indented for a map's block) under the map `name` in an
+// on_maps block of its own, in place of the shipped one where there is one.
+std::string WithOwnBlock(const std::string& name, const std::string& block) {
+  std::string text = Shipped();
+  const auto at = text.find("  on_maps:");
+  if (at != std::string::npos) text.erase(at);
+  return text + "  on_maps:\n    " + name + ":\n" + block;
+}
+
+TEST(LocomotionConfigTest, AFloorsOwnBlockReplacesOnlyTheKeysItGives) {
+  const LocomotionConfig c =
+      Load(WithOwnBlock("hall", "      max_view_offset_in: 10\n      turn_rate_radps: 0.4\n"));
+  ASSERT_EQ(c.on_maps.count("hall"), 1U);
+  const HallwayBehaviourConfig& own = c.on_maps.at("hall");
+  EXPECT_DOUBLE_EQ(own.max_view_offset_in, 10.0);
+  EXPECT_DOUBLE_EQ(own.turn_rate_radps, 0.4);
+  EXPECT_DOUBLE_EQ(own.follower.length_scale_in, c.behaviour.follower.length_scale_in);
+  EXPECT_DOUBLE_EQ(own.view_offset_after_in, c.behaviour.view_offset_after_in);
+  EXPECT_EQ(own.follower.sensor_count, c.behaviour.follower.sensor_count);  // the robot's ring
+  EXPECT_DOUBLE_EQ(c.behaviour.max_view_offset_in, 0.0);
+
+  const LocomotionConfig on_hall = ForMap(c, "hall");
+  EXPECT_DOUBLE_EQ(on_hall.behaviour.max_view_offset_in, 10.0);
+  EXPECT_DOUBLE_EQ(on_hall.behaviour.turn_rate_radps, 0.4);
+  EXPECT_TRUE(on_hall.on_maps.empty());
+  const LocomotionConfig elsewhere = ForMap(c, "another_floor");
+  EXPECT_DOUBLE_EQ(elsewhere.behaviour.max_view_offset_in, 0.0);
+  EXPECT_DOUBLE_EQ(elsewhere.behaviour.turn_rate_radps, c.behaviour.turn_rate_radps);
+}
+
+TEST(LocomotionConfigTest, AFloorsOwnBlockIsCheckedAsTheHallwayBlockIs) {
+  std::string why = Refusal(WithOwnBlock("hall", "      turn_speed: 1\n"), "an unknown key");
+  EXPECT_THAT(why, HasSubstr("locomotion.yaml:"));
+  EXPECT_THAT(why, HasSubstr("locomotion.on_maps.hall.turn_speed"));
+  why = Refusal(WithOwnBlock("hall", "      stop_distance_in: 2\n"), "a value out of range");
+  EXPECT_THAT(why, HasSubstr("locomotion.on_maps.hall.stop_distance_in"));
+  // The checks between keys hold with the defaults the block does not replace.
+  why = Refusal(WithOwnBlock("hall", "      envelope_offset_in: 8\n      max_view_offset_in: 10\n"),
+                "a line outside the floor's envelope");
+  EXPECT_THAT(why, HasSubstr("must be less than envelope_offset_in"));
+  why = Refusal(WithOwnBlock("hall", "      stall_time_s: 0.1\n"), "a stall bar out of reach");
+  EXPECT_THAT(why, HasSubstr("locomotion.on_maps.hall.stall_time_s"));
+  EXPECT_THAT(why, HasSubstr("must be less than"));
+}
+
+TEST(LocomotionConfigTest, ShippedFloorsRideTheLineOnlyInTheScienceHall) {
+  const LocomotionConfig c = Load(Shipped());
+  EXPECT_DOUBLE_EQ(ForMap(c, "science_hall_2f").behaviour.max_view_offset_in, 10.0);
+  EXPECT_DOUBLE_EQ(ForMap(c, "teaching_building_1f").behaviour.max_view_offset_in, 0.0);
+  EXPECT_DOUBLE_EQ(ForMap(c, "engineering_building_3f").behaviour.max_view_offset_in, 0.0);
+}
+
 TEST(LocomotionConfigTest, SerialDeviceIsRefusedAsNotBuilt) {
   EXPECT_THROW(Load(Replace(Shipped(), "device: virtual", "device: serial")), InputError);
 }

@@ -6,6 +6,7 @@
 #include "runtime/component_node.h"
 #include "sensing/robot_config.h"
 #include "sensorsPubSubTypes.h"
+#include "stickrep/map_io.h"
 
 namespace stickrep::locomotion {
 
@@ -17,7 +18,9 @@ class LocomotionNode : public runtime::ComponentNode {
   std::unique_ptr<component::Component> Build(runtime::NodeContext& ctx,
                                               component::Context& cc) override {
     const sensing::RobotConfig robot = sensing::LoadRobotConfigFile(ctx.system.robot_file);
-    const LocomotionConfig config = LoadLocomotionConfig(ctx.config, robot);
+    // The floor's own hallway behaviour, where locomotion.yaml gives one (on_maps).
+    const LocomotionConfig config = ForMap(LoadLocomotionConfig(ctx.config, robot),
+                                           map::LoadMap(ctx.system.map_file).info().name);
     auto locomotion = std::make_unique<LocomotionComponent>(
         cc, config, robot.base.wheel_base_in,
         LocomotionComponent::Outputs{

@@ -58,8 +58,9 @@ RunSetup LoadRunSetup(const std::string& config_dir, const std::string& map_file
   s.landmark = landmark::LoadLandmarkConfig(Section(dir + "/landmark.yaml", "landmark"));
   s.localizer = localizer::LoadLocalizerSettings(Section(dir + "/localizer.yaml", "localizer"));
   s.localizer.view.camera_fov_deg = s.robot.camera.fov_deg;  // doors too wide to see whole
-  s.locomotion =
-      locomotion::LoadLocomotionConfig(Section(dir + "/locomotion.yaml", "locomotion"), s.robot);
+  s.locomotion = locomotion::ForMap(
+      locomotion::LoadLocomotionConfig(Section(dir + "/locomotion.yaml", "locomotion"), s.robot),
+      s.map->info().name);
   s.executive = executive::LoadExecutiveConfig(Section(dir + "/executive.yaml", "executive"));
   return s;
 }
