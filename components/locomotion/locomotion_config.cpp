@@ -1,6 +1,7 @@
 #include "locomotion/locomotion_config.h"
 
 #include <algorithm>
+#include <initializer_list>
 
 #include "common/units.h"
 #include "stickrep/map.h"
@@ -8,6 +9,14 @@
 namespace stickrep::locomotion {
 
 namespace {
+
+// The first of `keys` that `h` gives, else the first: the key a check between keys names.
+const char* GivenKey(const StrictYaml& h, std::initializer_list<const char*> keys) {
+  for (const char* key : keys) {
+    if (h.Has(key)) return key;
+  }
+  return *keys.begin();
+}
 
 // The hallway keys of `h` into `b`: every one required, or (a floor's own block) only those
 // given, over the values `b` holds; the keys' bounds and the checks between them either way.
@@ -32,7 +41,7 @@ void LoadHallway(const StrictYaml& h, bool every_key, HallwayBehaviourConfig& b)
   read("min_view_speed_ftps", 0.1, 5.0, "ft/s", b.min_view_speed_ftps);
   read("max_view_offset_in", 0.0, 60.0, "in", b.max_view_offset_in);
   if (b.max_view_offset_in >= b.envelope_offset_in) {
-    h.Fail(h.Has("max_view_offset_in") ? "max_view_offset_in" : "envelope_offset_in",
+    h.Fail(GivenKey(h, {"max_view_offset_in", "envelope_offset_in"}),
            "max_view_offset_in must be less than envelope_offset_in");
   }
   read("view_offset_after_in", 0.0, 1200.0, "in", b.view_offset_after_in);
@@ -40,7 +49,7 @@ void LoadHallway(const StrictYaml& h, bool every_key, HallwayBehaviourConfig& b)
   read("stall_time_s", 0.1, 10.0, "s", b.stall_time_s);
   read("stall_travel_in", 0.01, 12.0, "in", b.stall_travel_in);
   if (b.stall_travel_in >= FeetToInches(b.stall_speed_ftps) * b.stall_time_s) {
-    h.Fail(h.Has("stall_travel_in") ? "stall_travel_in" : "stall_time_s",
+    h.Fail(GivenKey(h, {"stall_travel_in", "stall_time_s", "stall_speed_ftps"}),
            "stall_travel_in must be less than stall_time_s at stall_speed_ftps travels");
   }
   h.Finish();

@@ -124,6 +124,7 @@ TEST(LocomotionConfigTest, AFloorsOwnBlockIsCheckedAsTheHallwayBlockIs) {
   // The checks between keys hold with the defaults the block does not replace.
   why = Refusal(WithOwnBlock("hall", "      envelope_offset_in: 8\n      max_view_offset_in: 10\n"),
                 "a line outside the floor's envelope");
+  EXPECT_THAT(why, HasSubstr("locomotion.on_maps.hall.max_view_offset_in"));
   EXPECT_THAT(why, HasSubstr("must be less than envelope_offset_in"));
   why = Refusal(WithOwnBlock("hall", "      stall_time_s: 0.1\n"), "a stall bar out of reach");
   EXPECT_THAT(why, HasSubstr("locomotion.on_maps.hall.stall_time_s"));
