@@ -266,6 +266,7 @@ void HallwayBehaviour::Reset() {
   wall_known_ = false;
   oblique_scans_ = 0;
   pending_ = TurnKind::kNone;
+  squaring_ = false;
   pending_rotate_rad_ = 0.0;
   blocked_ = false;
 }
@@ -404,13 +405,22 @@ bool HallwayBehaviour::TurnInPlace(double odometry_heading_rad, double dt_s, Beh
         std::clamp(wanted, last_angular_radps_ - a * dt_s, last_angular_radps_ + a * dt_s);
     last_angular_radps_ = out.angular_radps;
     last_linear_ftps_ = 0.0;
-    out.reason = fmt::format("turning {:+.0f} deg in place at a {}: {:.0f} deg to go",
-                             RadToDeg(turn_rad_), ToString(pending_), RadToDeg(std::abs(remaining)));
+    out.reason = fmt::format(
+        "turning {:+.0f} deg in place {}: {:.0f} deg to go", RadToDeg(turn_rad_),
+        squaring_ ? "to square up to the hallway" : fmt::format("at a {}", ToString(pending_)),
+        RadToDeg(std::abs(remaining)));
     Report(out);
     return true;
   }
-  // Done: follow the new hallway with a fresh controller and no stale wall.
-  tracker_.TurnedOnto(turn_rad_);
+  // Done: follow the new hallway with a fresh controller and no stale wall. Squared up in
+  // the same hallway, the track starts again from the next scan: its heading was the one
+  // that led into the wall.
+  if (squaring_) {
+    tracker_.Reset();
+  } else {
+    tracker_.TurnedOnto(turn_rad_);
+  }
+  squaring_ = false;
   state_ = BehaviourState::kFollowing;
   pending_ = TurnKind::kNone;
   follower_.Reset();
@@ -427,6 +437,7 @@ void HallwayBehaviour::Reverse(BehaviourOutput& out) {
   last_linear_ftps_ = last_angular_radps_ = 0.0;
   state_ = BehaviourState::kFollowing;
   pending_ = TurnKind::kNone;
+  squaring_ = false;
   out.linear_ftps = out.angular_radps = 0.0;
   out.reversed = true;
   out.turn_kind = TurnKind::kHallwayEnd;
@@ -530,6 +541,7 @@ void HallwayBehaviour::Blocked(double odometer_in, double now_s, BehaviourOutput
   // travel reverses (§6.3 A4), as at a hallway end.
   const double free_in = travel_sign_ > 0 ? estimate_.free_forward_in : estimate_.free_backward_in;
   const char* where = travel_sign_ > 0 ? "ahead" : "behind";
+  if (!blocked_ && SquareUp(free_in, out)) return;
   if (!blocked_) {
     blocked_ = true;
     blocked_since_s_ = now_s;
@@ -542,6 +554,34 @@ void HallwayBehaviour::Blocked(double odometer_in, double now_s, BehaviourOutput
     return;
   }
   out.reason = fmt::format("obstacle {:.0f} in {}: stopped until it clears", free_in, where);
+}
+
+bool HallwayBehaviour::SquareUp(double free_in, BehaviourOutput& out) {
+  // Stopped by a side wall the base heads into (a hallway that bends where the other side
+  // is open, so nothing showed the bend but this wall; a start turned far from the axis):
+  // that wall gives the hallway's direction, and the base turns in place onto it rather than
+  // wait before a wall that will not move. Its speed was zero, so steering could not.
+  // Once per kObstacleHoldIn of travel: squared up and stopped again at once, the fit is
+  // not to be trusted, and the base waits and then reverses as before any obstacle.
+  const HallwayFollowerConfig& fc = config_.follower;
+  const double side_in = SideWallsHeadedIntoIn(estimate_, travel_sign_ > 0 ? 0.0 : kPi, fc);
+  if (!estimate_.heading_valid || !std::isfinite(side_in) || side_in > free_in + 1e-6) return false;
+  if (squared_ && std::abs(previous_odometer_in_ - squared_odometer_in_) < kObstacleHoldIn) {
+    return false;
+  }
+  squared_ = true;
+  squared_odometer_in_ = previous_odometer_in_;
+  state_ = BehaviourState::kTurning;
+  pending_ = TurnKind::kNone;
+  squaring_ = true;
+  turn_rad_ = -estimate_.heading_error_rad;
+  turn_target_rad_ = WrapPi(previous_heading_rad_ + turn_rad_);
+  last_angular_radps_ = 0.0;
+  out.turn_started = true;
+  out.reason = fmt::format(
+      "headed {:+.0f} deg into the wall {:.0f} in {}: squaring up to it in place",
+      RadToDeg(estimate_.heading_error_rad), side_in, travel_sign_ > 0 ? "ahead" : "behind");
+  return true;
 }
 
 bool HallwayBehaviour::ActAtWall(double wall_in, double wall_normal, double stop_at_in,

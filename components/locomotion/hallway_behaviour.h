@@ -264,6 +264,9 @@ class HallwayBehaviour {
               double odometer_in, double now_s, double dt_s, BehaviourOutput& out);
   // The follower stopped for something close: waits, or reverses after the patience.
   void Blocked(double odometer_in, double now_s, BehaviourOutput& out);
+  // At the first stop of a blocked spell: when a side wall the base heads into stopped it,
+  // starts an in-place turn onto that wall's direction (true; `out` then says so).
+  bool SquareUp(double free_in, BehaviourOutput& out);
   // Travel reverses (a hallway end, §6.3 A4).
   void Reverse(BehaviourOutput& out);
   // Whether the base has stalled while driven (stall_time_s): then travel reverses and
@@ -330,6 +333,9 @@ class HallwayBehaviour {
   double turn_target_rad_ = 0.0;
   double turn_rad_ = 0.0;
   TurnKind pending_ = TurnKind::kNone;
+  bool squaring_ = false;  // the turn squares up to this hallway (SquareUp), no corner
+  bool squared_ = false;   // SquareUp has turned the base, at this odometer reading
+  double squared_odometer_in_ = 0.0;
   double pending_rotate_rad_ = 0.0;
   double previous_odometer_in_ = 0.0;
   double previous_heading_rad_ = 0.0;

@@ -494,6 +494,34 @@ TEST(HallwayBehaviourTest, StartBesideAnOpenHallFollowsTheOtherWall) {
   EXPECT_NEAR(r.psi, 0.0, DegToRad(5.0));
 }
 
+TEST(HallwayBehaviourTest, SquaresUpToAWallItHeadsIntoInsteadOfWaitingBeforeIt) {
+  // The base stands 17 in from the right wall, turned 25 deg into it, with the other side
+  // open into a hall 30 ft deep (as where a corridor bends along an open side): the wall
+  // stops it at once, and steering, which scales with the speed, cannot turn it. It turns
+  // in place onto the wall's direction and goes on; it neither waits the obstacle patience
+  // before the wall nor reverses.
+  Drive r({{{-2000, 400}, {2000, 400}}, {{-2000, -48}, {2000, -48}}});
+  r.y = -48.0 + 17.0;
+  r.psi = DegToRad(-25.0);
+  const double start_x = r.x;
+  ASSERT_TRUE(r.Until([&] { return r.turns > 0; }, 1.0)) << r.out.reason;
+  EXPECT_EQ(r.obstacle_stops, 1);
+  EXPECT_THAT(r.out.reason, ::testing::HasSubstr("squaring up"));
+  double closest = 1e9;
+  ASSERT_TRUE(r.Until(
+      [&] {
+        closest = std::min(closest, Clearance(r.walls, r.x, r.y));
+        return r.x > start_x + 240.0;
+      },
+      20.0))
+      << r.out.reason;
+  EXPECT_LT(r.t, r.b.config().obstacle_patience_s + 10.0);
+  EXPECT_EQ(r.reversals, 0);
+  EXPECT_EQ(r.turns, 1);
+  EXPECT_GT(closest, Drive::kHeadRadiusIn);
+  EXPECT_NEAR(r.psi, 0.0, DegToRad(5.0));
+}
+
 TEST(HallwayBehaviourTest, AtAJunctionTurnsTowardTheCameraSide) {
   // A T: the hallway ends against a crossing hallway between x = -60 and x = 60.
   Drive r({{{-2000, 60}, {-60, 60}}, {{-60, 60}, {-60, 2000}},

@@ -95,23 +95,6 @@ struct Ahead {
   double wall_normal_rad = 0.0;
 };
 
-// A side wall the base is heading into (its normal more than 10 deg into the travel
-// direction: far beyond what steering allows) stands in the way where the travel line meets
-// it, less the base's radius. Its echoes are explained by the wall's fit, so they would not
-// stop the base otherwise.
-double SideWallsHeadedIntoIn(const HallwayEstimate& walls, double travel_rad,
-                             const HallwayFollowerConfig& c) {
-  double free_in = kNoObstacle;
-  for (const WallLine* w : {&walls.left, &walls.right}) {
-    if (!w->valid) continue;
-    const double towards = std::cos(WrapPi(w->normal_rad - travel_rad));
-    if (towards > std::sin(DegToRad(10.0))) {
-      free_in = std::min(free_in, std::max(0.0, w->distance_in - c.head_radius_in) / towards);
-    }
-  }
-  return free_in;
-}
-
 // An echo off the front sensors' fan, `off_rad` from the travel direction at `range_in`
 // from its transducer's face, that no fitted side wall explains (a convex corner, a column,
 // the edge of an opening): the distance along the travel direction at which it stands when
@@ -239,6 +222,19 @@ double PredictedWallRangeIn(double bearing_rad, double normal_rad, double distan
   const double face_in = distance_in - config.head_radius_in * std::cos(phi);
   if (face_in <= 0.0) return 0.0;
   return face_in / std::cos(beyond);
+}
+
+double SideWallsHeadedIntoIn(const HallwayEstimate& walls, double travel_rad,
+                             const HallwayFollowerConfig& c) {
+  double free_in = kNoObstacle;
+  for (const WallLine* w : {&walls.left, &walls.right}) {
+    if (!w->valid) continue;
+    const double towards = std::cos(WrapPi(w->normal_rad - travel_rad));
+    if (towards > std::sin(DegToRad(kHeadedIntoDeg))) {
+      free_in = std::min(free_in, std::max(0.0, w->distance_in - c.head_radius_in) / towards);
+    }
+  }
+  return free_in;
 }
 
 HallwayEstimate EstimateHallway(const std::vector<SonarRange>& scan,

@@ -217,6 +217,17 @@ HallwayEstimate EstimateHallway(const std::vector<SonarRange>& scan,
 double PredictedWallRangeIn(double bearing_rad, double normal_rad, double distance_in,
                             const HallwayFollowerConfig& config);
 
+// A side wall whose normal points more than this into the travel direction is headed into:
+// far beyond the 7.5° envelope steering keeps (§6.4.2).
+inline constexpr double kHeadedIntoDeg = 10.0;
+
+// How far the base can travel along `travel_rad` (0 forward, pi backward) before a fitted
+// side wall it is headed into (see kHeadedIntoDeg) meets it: where the travel line meets the
+// wall, less the base's radius; kNoObstacle when it heads into neither. The wall's echoes
+// are explained by its fit, so the free-space check would not stop the base otherwise.
+double SideWallsHeadedIntoIn(const HallwayEstimate& walls, double travel_rad,
+                             const HallwayFollowerConfig& config);
+
 // Bearing of sensor k from the base's forward axis (see the conventions above), in
 // (-pi, pi].
 double SensorBearingRad(int k, const HallwayFollowerConfig& config);
