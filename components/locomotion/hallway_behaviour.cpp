@@ -267,6 +267,7 @@ void HallwayBehaviour::Reset() {
   oblique_scans_ = 0;
   pending_ = TurnKind::kNone;
   squaring_ = false;
+  squared_ = false;
   pending_rotate_rad_ = 0.0;
   blocked_ = false;
 }
