@@ -213,7 +213,7 @@ TEST(HallwayClosedLoopTest, EngineeringBuildingWing1CorridorLap) {
 }
 
 TEST(HallwayClosedLoopTest, ScienceHallOnTheCameraLineTouchesNoWallAlongTheStudyHall) {
-  // The science hall's labs corridor is 87 in wide: paced for the camera, the base rides
+  // The science hall's labs corridor is 88 in wide: paced for the camera, the base rides
   // 10 in off the axis at about 2.4 ft/s. Where the corridor bends along the side that
   // opens into the study hall, only the wall it heads into shows the bend; with this
   // seed's slip and sonar errors that wall stops the base, which must square up to it and
