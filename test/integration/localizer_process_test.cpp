@@ -28,8 +28,8 @@ constexpr int kDomainId = 24;
 // 13 and the 36/36 of edge 15 are what single the place out), to 36 in into the wall after
 // the last door. Every door is read with the mark the map gives it. The map's doors carry
 // surveyed marks, so the localizer declares a pose at the marked model's bar (the posterior
-// 0.9999989, configs/localizer.yaml on_marked_maps): after 24 edges the right place is
-// still just under it; 30 bring it over.
+// 0.999988, configs/localizer.yaml on_marked_maps); the 30 edges bring the right place over
+// it.
 constexpr char kRingId[] = "wing3_corridor";
 constexpr int kStartEdge = 4;
 constexpr double kStartOffsetIn = 20.0;
