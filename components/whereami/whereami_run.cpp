@@ -109,6 +109,9 @@ class Run {
   void SendGoalAhead(const Recovery& r);
   void AfterStep();
   void TraceBelief(const message::LocalizationPose& p);
+  // Where the camera truly looks, for a trace line: the ring it is seen on (the robot may
+  // have gone on from its start ring into another corridor), the view edge and the travel.
+  std::string TruthInView(const virtual_robot::SimTruth& t) const;
   double NowS() const { return stack_.executor().ElapsedS(); }
 
   const map::Map& map_;
@@ -162,6 +165,7 @@ class Run {
   static constexpr const char* kGoalId = "far";
   double first_pose_in_ = -1.0;
   int last_view_edge_ = -1;
+  int last_view_ring_ = -1;
   int traced_collisions_ = 0;  // contacts already written to the trace
   std::string last_belief_;
   message::LocomotionState last_state_ = message::LocomotionState::kStopped;
@@ -275,11 +279,10 @@ void Run::Watch(const message::LocalizationPose& p) {
     if (options_.trace && result_.behaviour_log.size() < 400) {
       const localizer::Hypothesis& h = stack_.localizer().localizer().estimate().hypotheses.front();
       result_.behaviour_log.push_back(fmt::format(
-          "{:7.1f} s  wrong pose published as LOCALIZED: view edge {} {} + {:.0f} in, truth view "
-          "edge {} {}: {}",
-          NowS(), h.edge, h.dir > 0 ? "fwd" : "back", h.offset_in,
-          view_.ViewEdge(ring_, t.seen_edge_index), t.seen_forward_in_ring ? "fwd" : "back",
-          p.message));
+          "{:7.1f} s  wrong pose published as LOCALIZED: ring '{}' view edge {} {} + {:.0f} in, "
+          "truth {}: {}",
+          NowS(), view_.view().ring(h.ring).id, h.edge, h.dir > 0 ? "fwd" : "back", h.offset_in,
+          TruthInView(t), p.message));
     }
     OpenSpell();
   }
@@ -491,10 +494,18 @@ void Run::AfterStep() {
         NowS(), truth.edge_index, truth.offset_in, truth.lateral_offset_in,
         RadToDeg(truth.heading_error_rad), truth.corner_distance_in));
   }
-  const int e = view_.ViewEdge(ring_, truth.edge_index);
-  if (e == last_view_edge_) return;
+  // The edges passed, on the ring the camera looks at (the robot may go on into another
+  // corridor); a ring change is written before its first edge.
+  const int ring = view_.original().FindRing(truth.seen_ring_id);
+  if (ring < 0) return;
+  const int e = view_.ViewEdge(ring, truth.seen_edge_index);
+  if (e == last_view_edge_ && ring == last_view_ring_) return;
+  if (ring != last_view_ring_ && last_view_ring_ >= 0) {
+    result_.true_trace += fmt::format("<ring '{}'> ", truth.seen_ring_id);
+  }
   last_view_edge_ = e;
-  const map::Edge& edge = view_.view().ring(ring_).edges[e];
+  last_view_ring_ = ring;
+  const map::Edge& edge = view_.view().ring(ring).edges[e];
   map::SensedEdge as_sensed;
   as_sensed.code = map::CodeOf(edge);
   as_sensed.metric_in = edge.metric_in;
@@ -516,11 +527,18 @@ void Run::TraceBelief(const message::LocalizationPose& p) {
           ? "no place"
           : fmt::format("ring '{}' edge {} {} p={:.3f}", p.best.ring_id, p.best.edge_index,
                         p.best.forward ? "fwd" : "back", p.best.probability);
-  result_.behaviour_log.push_back(fmt::format(
-      "{:7.1f} s  localizer {}: newest {}, best {}, truth edge {} (view edge {}) {}: {}",
-      NowS(), localizer::ToString(stack_.localizer().localizer().estimate().status), newest,
-      best, truth.edge_index, view_.ViewEdge(ring_, truth.edge_index),
-      truth.forward_in_ring ? "fwd" : "back", p.message));
+  result_.behaviour_log.push_back(
+      fmt::format("{:7.1f} s  localizer {}: newest {}, best {}, truth {}: {}", NowS(),
+                  localizer::ToString(stack_.localizer().localizer().estimate().status), newest,
+                  best, TruthInView(truth), p.message));
+}
+
+std::string Run::TruthInView(const virtual_robot::SimTruth& t) const {
+  const int ring = view_.original().FindRing(t.seen_ring_id);
+  if (ring < 0) return fmt::format("ring '{}' (not on the map)", t.seen_ring_id);
+  return fmt::format("ring '{}' edge {} (view edge {}) {}", t.seen_ring_id, t.seen_edge_index,
+                     view_.ViewEdge(ring, t.seen_edge_index),
+                     t.seen_forward_in_ring ? "fwd" : "back");
 }
 
 RunResult Run::Finish() {

@@ -23,7 +23,7 @@ START_RE = re.compile(r"seed (\d+)\s+start ring '(\S+)'")
 RESULT_RE = re.compile(r"(correct|wrong): .*after (\d+) edges")
 ESTIMATE_RE = re.compile(
     r"localizer (?:RECOVERING|LOCALIZED): newest (\S+), best ring '(\S+)' edge (\d+) (\w+) "
-    r"p=[\d.]+, truth edge (\d+) \(view edge \d+\) (\w+)")
+    r"p=[\d.]+, truth ring '(\S+)' edge (\d+) \(view edge \d+\) (\w+)")
 
 
 def kind(token):
@@ -59,24 +59,26 @@ def read_runs(path):
             if line.strip().startswith("sensed: "):
                 run["sensed"] = line.split(":", 1)[1].split()
             elif line.strip().startswith("passed: "):
-                run["passed"] = [re.sub(r"\[\d+\]$", "", t) for t in line.split(":", 1)[1].split()]
+                # A ring change ("<ring 'x'>") is a mark in the trace, not an edge passed.
+                run["passed"] = [re.sub(r"\[\d+\]$", "", t)
+                                 for t in line.split(":", 1)[1].split() if not t.startswith("<ring")]
             m = ESTIMATE_RE.search(line)
             if m:
                 run["estimates"].append((m.group(1), m.group(2), int(m.group(3)), m.group(4),
-                                         int(m.group(5)), m.group(6)))
+                                         m.group(5), int(m.group(6)), m.group(7)))
     return [r for r in runs if "declared" in r and "sensed" in r and "passed" in r]
 
 
 def settled_at(run):
     """Edges sensed when the best place became the truth for good (None if it never did)."""
     at, marks = -1, []
-    for newest, ring, edge, direction, truth, truth_direction in run["estimates"]:
+    for newest, ring, edge, direction, truth_ring, truth, truth_direction in run["estimates"]:
         j = at + 1
         while j < len(run["sensed"]) and run["sensed"][j] != newest:
             j += 1
         if j < len(run["sensed"]):
             at = j
-        right = ring == run["ring"] and abs(edge - truth) <= 1 and direction == truth_direction
+        right = ring == truth_ring and abs(edge - truth) <= 1 and direction == truth_direction
         marks.append((at + 1, right))
     settled = None
     for edges, right in reversed(marks):
