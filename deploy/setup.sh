@@ -18,6 +18,7 @@ packages=(
   openssl libssl-dev                                          # DDS Security: make-keys.sh, runtime
   cyclonedds-dev cyclonedds-tools                             # the security test's outside peer
   clang libclang-rt-14-dev                                    # the fuzz targets (libFuzzer)
+  python3                                                     # tools/scripts and their tests
 )
 missing=()
 for p in "${packages[@]}"; do

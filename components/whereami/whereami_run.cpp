@@ -501,7 +501,7 @@ void Run::AfterStep() {
   const int e = view_.ViewEdge(ring, truth.seen_edge_index);
   if (e == last_view_edge_ && ring == last_view_ring_) return;
   if (ring != last_view_ring_ && last_view_ring_ >= 0) {
-    result_.true_trace += fmt::format("<ring '{}'> ", truth.seen_ring_id);
+    result_.true_trace += fmt::format("<ring:{}> ", truth.seen_ring_id);
   }
   last_view_edge_ = e;
   last_view_ring_ = ring;

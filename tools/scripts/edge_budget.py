@@ -11,6 +11,8 @@ For every run that declared a correct pose:
   - how many sensed edges were not read as the map has them: the edit distance, on edge
     kinds (walls by kind, doors by class, corners), between the sensed edges and the map
     edges the robot passed, the partial first edge and the edge it is in left out.
+A run whose sequence was begun again on the way (it holds fewer edges than the pose was
+declared after: an open end, a pose given up) is left out and counted.
 
 Usage: stickrep-whereami --seed 1301 -N 200 --trace > trace.log
        tools/scripts/edge_budget.py trace.log
@@ -19,7 +21,7 @@ import re
 import statistics
 import sys
 
-START_RE = re.compile(r"seed (\d+)\s+start ring '(\S+)'")
+START_RE = re.compile(r"seed\s+(\d+)\s+start ring '(\S+)'")
 RESULT_RE = re.compile(r"(correct|wrong): .*after (\d+) edges")
 ESTIMATE_RE = re.compile(
     r"localizer (?:RECOVERING|LOCALIZED): newest (\S+), best ring '(\S+)' edge (\d+) (\w+) "
@@ -59,9 +61,9 @@ def read_runs(path):
             if line.strip().startswith("sensed: "):
                 run["sensed"] = line.split(":", 1)[1].split()
             elif line.strip().startswith("passed: "):
-                # A ring change ("<ring 'x'>") is a mark in the trace, not an edge passed.
+                # A ring change ("<ring:x>") is a mark in the trace, not an edge passed.
                 run["passed"] = [re.sub(r"\[\d+\]$", "", t)
-                                 for t in line.split(":", 1)[1].split() if not t.startswith("<ring")]
+                                 for t in line.split(":", 1)[1].split() if not t.startswith("<ring:")]
             m = ESTIMATE_RE.search(line)
             if m:
                 run["estimates"].append((m.group(1), m.group(2), int(m.group(3)), m.group(4),
@@ -97,18 +99,26 @@ def main():
     except OSError as e:
         print(f"{sys.argv[1]}: cannot read it ({e.strerror})", file=sys.stderr)
         sys.exit(2)
-    rows = []
+    rows, restarted = [], 0
     for r in runs:
+        # A sequence that holds fewer edges than the pose was declared after was begun again
+        # on the way (at an open end, or after a pose given up): it does not cover the run.
+        if sum(not t.startswith("<") for t in r["sensed"]) < r["declared"]:
+            restarted += r["correct"]
+            continue
         settled = settled_at(r)
         if r["correct"] and settled is not None:
             rows.append((r["declared"], settled, sum(t.startswith("<") for t in r["sensed"]),
                          edit_distance(r["sensed"][1:], r["passed"][1:-1]), len(r["sensed"]) - 1))
     if not rows:
-        print(f"{sys.argv[1]}: no correct run with its trace (stickrep-whereami --trace output?)",
-              file=sys.stderr)
+        print(f"{sys.argv[1]}: no correct run with its trace (stickrep-whereami --trace output?)"
+              + (f"; {restarted} correct runs left out, their sequence begun again on the way"
+                 if restarted else ""), file=sys.stderr)
         sys.exit(2)
     mean = lambda i: statistics.mean(row[i] for row in rows)
-    print(f"{len(runs)} runs read, {len(rows)} correct with a settled best place")
+    print(f"{len(runs)} runs read, {len(rows)} correct with a settled best place"
+          + (f" ({restarted} correct left out: their sequence was begun again on the way)"
+             if restarted else ""))
     print(f"edges when the pose was declared:                 {mean(0):6.2f} (median {statistics.median(r[0] for r in rows)})")
     print(f"  the partial first edge:                          {1:6.2f}")
     print(f"  until the truth was the best place for good:     {mean(1):6.2f} (median {statistics.median(r[1] for r in rows)})")
