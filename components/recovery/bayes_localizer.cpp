@@ -27,8 +27,9 @@ BayesLocalizer::BayesLocalizer(const map::MatchIndex& index, BayesModel model)
     : index_(index), model_(std::move(model)) {
   states_ = 2 * index.EdgeCount();
   for (int g = 0; g < index.EdgeCount(); ++g) total_length_in_ += index.metric(g);
-  for (auto* v : {&n_, &i1_, &i2_, &c1_, &c2_, &nn_, &ni1_, &ni2_, &nc1_, &nc2_, &s1_, &s2_, &t_,
-                  &h_, &ns1_, &ns2_, &nt_, &nh_}) {
+  for (auto* v : {&n_,   &i1_,  &i2_,        &c1_,          &c2_,    &nn_,     &ni1_, &ni2_,
+                  &nc1_, &nc2_, &s1_,        &s2_,          &t_,     &h_,      &ns1_, &ns2_,
+                  &nt_,  &nh_,  &prev_seen_, &prev_missed_, &nseen_, &nmissed_}) {
     v->assign(states_, 0.0);
   }
   for (auto* v : {&lb1_, &lb2_, &nlb1_, &nlb2_, &fd1_, &fd2_, &nfd1_, &nfd2_}) {
@@ -38,6 +39,7 @@ BayesLocalizer::BayesLocalizer(const map::MatchIndex& index, BayesModel model)
 
 void BayesLocalizer::Reset() {
   std::fill(n_.begin(), n_.end(), 0.0);
+  ClearPrev();
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
   ClearLeafPhases();
@@ -85,6 +87,7 @@ void BayesLocalizer::Reverse(double travelled_in) {
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
   ClearLeafPhases();
+  ClearPrev();  // going back, the door before each edge is the one on its other side
   skip_partial_ = true;
   // Moving the belief is no new evidence: the confirmation count stays as it was.
   const int above = above_;
@@ -138,6 +141,48 @@ void BayesLocalizer::ReverseAfter(int first, int dir, double mass, double travel
 
 double BayesLocalizer::Missed(int door) const {
   return model_.confusion.Missed(index_.code(door) - 1, index_.in_row(door));
+}
+
+bool BayesLocalizer::RowLinked(int wall, int door) const {
+  return model_.confusion.row_missed_by_before && index_.code(wall) == map::kWallCode &&
+         index_.in_row(wall) && index_.in_row(door);
+}
+
+double BayesLocalizer::MissedAfter(int wall, int door, Confusion::Before before) const {
+  if (!RowLinked(wall, door)) return Missed(door);
+  return model_.confusion.RowMissed(index_.code(door) - 1, before);
+}
+
+double BayesLocalizer::ReadFactorAfter(int wall, int door, Confusion::Before before) const {
+  if (!RowLinked(wall, door)) return 1.0;
+  return model_.confusion.RowReadFactor(index_.code(door) - 1, before);
+}
+
+double BayesLocalizer::MissedFrom(int from, int door) const {
+  const double seen = prev_seen_[from], missed = prev_missed_[from];
+  using B = Confusion::Before;
+  return seen * MissedAfter(from / 2, door, B::kDoorSeen) +
+         missed * MissedAfter(from / 2, door, B::kDoorMissed) +
+         (1.0 - seen - missed) * MissedAfter(from / 2, door, B::kUnknown);
+}
+
+double BayesLocalizer::ReadFactorFrom(int from, int door) const {
+  const double seen = prev_seen_[from], missed = prev_missed_[from];
+  using B = Confusion::Before;
+  return seen * ReadFactorAfter(from / 2, door, B::kDoorSeen) +
+         missed * ReadFactorAfter(from / 2, door, B::kDoorMissed) +
+         (1.0 - seen - missed) * ReadFactorAfter(from / 2, door, B::kUnknown);
+}
+
+void BayesLocalizer::AddEnd(int s, double mass, Confusion::Before before) {
+  nn_[s] += mass;
+  if (before == Confusion::Before::kDoorSeen) nseen_[s] += mass;
+  if (before == Confusion::Before::kDoorMissed) nmissed_[s] += mass;
+}
+
+void BayesLocalizer::ClearPrev() {
+  std::fill(prev_seen_.begin(), prev_seen_.end(), 0.0);
+  std::fill(prev_missed_.begin(), prev_missed_.end(), 0.0);
 }
 
 double BayesLocalizer::FalseDoorAt(int wall, Confusion::Before before) const {
@@ -227,6 +272,7 @@ void BayesLocalizer::WeighMark(const map::SensedEdge& e) {
 void BayesLocalizer::First(const map::SensedEdge& e) {
   outside_ = 0.0;
   std::fill(n_.begin(), n_.end(), 0.0);
+  ClearPrev();
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
   ClearLeafPhases();
@@ -354,7 +400,8 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   std::fill(nn_.begin(), nn_.end(), 0.0);
   std::fill(ni1_.begin(), ni1_.end(), 0.0);
   std::fill(ni2_.begin(), ni2_.end(), 0.0);
-  for (auto* v : {&ns1_, &ns2_, &nt_, &nh_}) std::fill(v->begin(), v->end(), 0.0);
+  for (auto* v : {&ns1_, &ns2_, &nt_, &nh_, &nseen_, &nmissed_})
+    std::fill(v->begin(), v->end(), 0.0);
   // Belief that passes out through a corridor's open end: the ring says nothing of where
   // the robot goes from there (across the corridor beyond, into a hall), so that belief
   // starts again from the prior, with what was sensed after it as a first edge. Belief that
@@ -400,6 +447,10 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
     if (!door) after.metric_is_lower_bound = true;
     AddPrior(after, leaving);
   }
+  for (int s = 0; s < states_; ++s) {
+    prev_seen_[s] = n_[s] > 0.0 ? nseen_[s] / n_[s] : 0.0;
+    prev_missed_[s] = n_[s] > 0.0 ? nmissed_[s] / n_[s] : 0.0;
+  }
 }
 
 void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e,
@@ -426,18 +477,21 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
   } else if (wall && map::IsDoorCode(code1)) {
     // A missed door seen as wall surface (at a corner), maybe with the wall after it.
     const double d = index_.metric(n1);
-    nn_[s1] += pn * angle * Missed(n1) * WallDensity(e.metric_in, d);
+    const double missed = MissedFrom(State(g, dir), n1);
+    nn_[s1] += pn * angle * missed * WallDensity(e.metric_in, d);
     const int w = index_.Step(n1, dir);
     if (w >= 0 && index_.code(w) == map::kWallCode) {
       const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
       if (Coplanar(a_out)) {
-        nn_[State(w, dir)] += pn * angle * Missed(n1) *
-                              (1.0 - FalseDoorAt(w, Confusion::Before::kDoorMissed)) *
-                              WallDensity(e.metric_in, d + index_.metric(w));
+        AddEnd(State(w, dir),
+               pn * angle * missed * (1.0 - FalseDoorAt(w, Confusion::Before::kDoorMissed)) *
+                   WallDensity(e.metric_in, d + index_.metric(w)),
+               Confusion::Before::kDoorMissed);
       }
     }
   } else if (door && map::IsDoorCode(code1)) {
-    NextLeafFromEnd(n1, dir, pn, angle, e);
+    // Read: its rates by the door before the wall the state ended in (a row's doors).
+    NextLeafFromEnd(n1, dir, pn * ReadFactorFrom(State(g, dir), n1), angle, e);
   } else if (!door && !wall && code1 == e.code) {
     nn_[s1] += pn * angle * WallDensity(e.metric_in, index_.metric(n1));
   }
@@ -448,7 +502,7 @@ void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
   const double pf = FalseDoorAt(n1, before);
   const int s1 = State(n1, dir);
   const double len1 = index_.metric(n1);
-  nn_[s1] += pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1);
+  AddEnd(s1, pn * angle * (1.0 - pf) * WallDensity(e.metric_in, len1), before);
   const int n2 = index_.Step(n1, dir);
   if (n2 >= 0 && index_.open_end(n2)) {
     // The wall before an open end, run on out through it to wherever the next edge
@@ -516,7 +570,8 @@ void BayesLocalizer::NextWallBeforeLeaf(int n1, int dir, double pn, double angle
   if (n2 < 0 || !map::IsDoorCode(index_.code(n2))) return;
   const double a_in = dir > 0 ? index_.angle_start(n2) : index_.angle_end(n2);
   if (!Coplanar(a_in)) return;
-  const double w = LeafWallWeight(n2, -1, e.metric_in, index_.metric(n1));
+  const double w =
+      LeafWallWeight(n2, -1, e.metric_in, index_.metric(n1)) * ReadFactorAfter(n1, n2, before);
   nh_[State(n2, dir)] += pn * angle * (1.0 - FalseDoorAt(n1, before)) * cf.leaf_before * w;
 }
 
@@ -553,8 +608,10 @@ void BayesLocalizer::NextFromLeafPhases(int s, const map::SensedEdge& e) {
   if (t_[s] > 0.0 && w >= 0 && index_.code(w) == map::kWallCode) {
     const double a_out = dir > 0 ? index_.angle_start(w) : index_.angle_end(w);
     if (Coplanar(a_out)) {
-      nn_[State(w, dir)] += t_[s] * flat * (1.0 - FalseDoorAt(w, Confusion::Before::kDoorSeen)) *
-                            WallDensity(e.metric_in, index_.metric(w) + deficit);
+      AddEnd(State(w, dir),
+             t_[s] * flat * (1.0 - FalseDoorAt(w, Confusion::Before::kDoorSeen)) *
+                 WallDensity(e.metric_in, index_.metric(w) + deficit),
+             Confusion::Before::kDoorSeen);
     }
   }
 }
@@ -571,16 +628,18 @@ void BayesLocalizer::NextWallOverMissedDoors(int n1, int dir, double pn, double 
                                              const map::SensedEdge& e, Confusion::Before before) {
   // One sensed wall over missed doors on a flat wall: wall, door, wall, ...
   RunOnOverMissedDoors(n1, dir, index_.metric(n1), pn * angle, 1.0 - FalseDoorAt(n1, before), 0.0,
-                       e);
+                       e, before);
 }
 
 void BayesLocalizer::RunOnOverMissedDoors(int from, int dir, double total, double mass, double p,
-                                          double extra_var, const map::SensedEdge& e) {
+                                          double extra_var, const map::SensedEdge& e,
+                                          Confusion::Before first) {
   int cur = from, d = -1, w = -1;
   for (int m = 0; m < model_.settings.max_missed_doors && FlatDoorThenWall(cur, dir, &d, &w); ++m) {
     const double before_w = total + index_.metric(d);
     const double len_w = index_.metric(w);
     const double pf = FalseDoorAt(w, Confusion::Before::kDoorMissed);
+    const double missed = MissedAfter(cur, d, m == 0 ? first : Confusion::Before::kDoorMissed);
     // ... ending in the first part of a wall that holds a false door. A false door just past
     // the missed door leaves a first part of a few inches, which the odometry and jamb noise
     // may read as less than nothing: within two of the wall's sigmas it is taken as none.
@@ -588,11 +647,12 @@ void BayesLocalizer::RunOnOverMissedDoors(int from, int dir, double total, doubl
                              ? 2.0 * std::max(1.0, model_.noise.WallSigmaIn(before_w))
                              : 0.0;
     if (e.metric_in > before_w - slack && e.metric_in <= before_w + len_w) {
-      AddFirstPart(State(w, dir), mass * p * Missed(d) * pf, std::max(0.0, e.metric_in - before_w));
+      AddFirstPart(State(w, dir), mass * p * missed * pf, std::max(0.0, e.metric_in - before_w));
     }
     total = before_w + len_w;
-    p *= Missed(d) * (1.0 - pf);
-    nn_[State(w, dir)] += mass * p * WallDensityOverMissed(e.metric_in, total, m + 1, extra_var);
+    p *= missed * (1.0 - pf);
+    AddEnd(State(w, dir), mass * p * WallDensityOverMissed(e.metric_in, total, m + 1, extra_var),
+           Confusion::Before::kDoorMissed);
     cur = w;
   }
 }
@@ -730,6 +790,7 @@ void BayesLocalizer::Normalise() {
     std::fill(i1_.begin(), i1_.end(), 0.0);
     std::fill(i2_.begin(), i2_.end(), 0.0);
     ClearLeafPhases();
+    ClearPrev();
     outside_ = 0.0;
     sum = 1.0;
   }

@@ -121,6 +121,20 @@ class BayesLocalizer {
   double FalseDoorVar(int s) const;
   // The probability that map door `door` is missed (its class's rate).
   double Missed(int door) const;
+  // Whether door `door` after map wall `wall` is read by the door before that wall: both in
+  // a row and the model rates a row's doors so (Confusion::RowMissed).
+  bool RowLinked(int wall, int door) const;
+  // Door `door` after wall `wall` (travelling on from it), the door before the wall
+  // `before`: its missed rate, and the factor its read rates take (1 when not row-linked).
+  double MissedAfter(int wall, int door, Confusion::Before before) const;
+  double ReadFactorAfter(int wall, int door, Confusion::Before before) const;
+  // The same for the door after N of state `from` (a wall), the door before that wall as
+  // that state's belief passed it (prev_seen_, prev_missed_).
+  double MissedFrom(int from, int door) const;
+  double ReadFactorFrom(int from, int door) const;
+  // Adds `mass` to N of state s for the next step, the door before its edge `before`.
+  void AddEnd(int s, double mass, Confusion::Before before);
+  void ClearPrev();
   // The false-door rate of map wall `wall` (in a row of doors or not; by its length where
   // the model rates false doors per inch; in a row, by the door before it where the model
   // rates that: Confusion::FalseDoorIn).
@@ -179,8 +193,10 @@ class BayesLocalizer {
   // of `mass` so far) over a missed door and the wall after it, up to max_missed_doors, the
   // sensed wall ending at that wall's end (normal about the length, with `extra_var` more
   // variance than WallDensity's) or in its first part before a false door (-> I1).
+  // `first`: the door before wall `from`, for the first door missed after it.
   void RunOnOverMissedDoors(int from, int dir, double total, double mass, double p,
-                            double extra_var, const map::SensedEdge& e);
+                            double extra_var, const map::SensedEdge& e,
+                            Confusion::Before first = Confusion::Before::kUnknown);
   // Adds `mass` to I1 of state sw: the sensed wall was the first part (`w1_in` long) of its
   // wall, before a false door (uniform over the wall, RoomForFalseDoor).
   void AddFirstPart(int sw, double mass, double w1_in);
@@ -228,6 +244,10 @@ class BayesLocalizer {
   // False doors the wall held before its part in I1 / I2 (Confusion::AnotherFalseDoor).
   std::vector<std::uint8_t> fd1_, fd2_, nfd1_, nfd2_;
   std::vector<double> s1_, s2_, t_, h_, ns1_, ns2_, nt_, nh_;  // the leaf phases
+  // The door before the edge of each N phase, where a row's doors are read by it: the shares
+  // of n_[s] that passed it seen and missed (the rest: not known); nseen_, nmissed_ are the
+  // masses the next step adds (AddEnd).
+  std::vector<double> prev_seen_, prev_missed_, nseen_, nmissed_;
   map::SensedEdge last_;  // the edge sensed last (what T and H need of it)
   RecoveryStatus status_ = RecoveryStatus::kEmpty;
   PoseBelief best_;

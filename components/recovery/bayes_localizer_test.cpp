@@ -628,6 +628,30 @@ TEST(BayesLocalizerRowTest, ADoorMissedInARowWeighsAsTheModelsRowsMissThem) {
   EXPECT_GT(after, 0.2);
 }
 
+TEST(BayesLocalizerRowTest, ADoorOfARowAfterASeenDoorIsMissedAtTheRateAfterASeenOne) {
+  const map::Map map = CorridorWithARowOfDoors();
+  const map::MatchIndex index(map);
+  const auto ratio = [&](const ErrorModel& em) {
+    BayesLocalizer b = MakeLocalizer(index, em);
+    for (const map::SensedEdge& e :
+         {Wall(120), Door(DoorClass::k36), Wall(276), Door(DoorClass::k32)}) {
+      b.Add(e);
+    }
+    return b.PoseProbability(5, +1) / b.PoseProbability(9, +1);
+  };
+  ErrorModel rows = ErrorModel::Paper();
+  rows.by_class[DoorClass::k36] = {0.90, 0.04, 0.06};
+  rows.in_row = ErrorModel::InRow{};
+  rows.in_row->by_class[DoorClass::k36] = {0.38, 0.02, 0.60};
+  ErrorModel linked = rows;
+  linked.in_row->door_missed_after_seen[DoorClass::k36] = 0.15;
+  linked.in_row->door_missed_after_missed[DoorClass::k36] = 0.90;
+  linked.Validate();
+  // The row's second door was missed after its first was seen: 0.15, not the row's 0.60.
+  // The first door, after a 120 in wall, is read at the row's rates either way.
+  EXPECT_NEAR(ratio(linked) / ratio(rows), 0.15 / 0.60, 0.01);
+}
+
 // A row of double doors between 46 in panels, as on the Engineering Building's wings, and a
 // stretch whose doors are where the row's reading below puts them:
 //   0 W120 1 D36 2 W46 3 D36/36 4 W46 5 D30/30 6 W46 7 D36 8 W200 9 D40 10 W150 |
@@ -767,6 +791,37 @@ TEST(BayesLocalizerRowTest, APanelAfterAMissedDoorHoldsAFalseDoorAtItsOwnRate) {
   const double gain = TruthOverTheRealDoors(by_before, true) / TruthOverTheRealDoors(flat, true);
   EXPECT_GT(gain, 2.0);
   EXPECT_LT(gain, (0.94 / 0.56) * (0.70 / 0.44) * (0.70 / 0.44));
+}
+
+// The odds of the truth after the row of double doors is read with its 36/36 missed and
+// the 30/30 after it seen: door 1 read, one wall over edges 2-4, and door 5 read (the truth,
+// walked forward).
+double TruthOddsWithTheSecondDoubleDoorRead(double missed_after_missed) {
+  const map::Map map = CorridorWithARowOfDoubleDoors();
+  const map::MatchIndex index(map);
+  ErrorModel em = RowOfDoubleDoorsModel();
+  em.in_row->door_missed_after_seen = {{DoorClass::k36_36, 0.70}, {DoorClass::k30_30, 0.60}};
+  em.in_row->door_missed_after_missed = {{DoorClass::k36_36, 0.70},
+                                         {DoorClass::k30_30, missed_after_missed}};
+  em.Validate();
+  BayesLocalizer b = MakeLocalizer(index, em);
+  const double wall_in = index.metric(2) + index.metric(3) + index.metric(4);
+  for (const map::SensedEdge& e :
+       {Wall(120), Door(DoorClass::k36), Wall(wall_in), Door(DoorClass::k30_30)}) {
+    b.Add(e);
+  }
+  const double p = b.PoseProbability(5, +1);
+  return p / (1.0 - p);
+}
+
+TEST(BayesLocalizerRowTest, ADoorOfARowReadAfterAMissedDoorWeighsAtTheRatesAfterAMissedOne) {
+  // The 30/30 after the missed 36/36 read right 70 % of the time against 10 %: its read
+  // rates scale by (1 - 0.3) / 0.4 and (1 - 0.9) / 0.4, seven times apart, on the truth's
+  // path; the filter must carry what the door before the panel was through the sensed wall.
+  const double likely = TruthOddsWithTheSecondDoubleDoorRead(0.30);
+  const double unlikely = TruthOddsWithTheSecondDoubleDoorRead(0.90);
+  EXPECT_GT(likely / unlikely, 4.0) << likely << " " << unlikely;
+  EXPECT_LT(likely / unlikely, 7.5) << likely << " " << unlikely;
 }
 
 // A corridor with a 36/36 double door (edge 1), and a single 36 in door (edge 6) where a

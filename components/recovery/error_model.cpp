@@ -60,6 +60,16 @@ std::map<DoorClass, double> ReadDistribution(const StrictYaml& node) {
   return out;
 }
 
+// Reads {class: probability, ...} whose values need not sum to anything.
+std::map<DoorClass, double> ReadClassProbabilities(const StrictYaml& node) {
+  std::map<DoorClass, double> out;
+  if (!node.IsMap()) node.Fail("", "expected a mapping of door class to probability");
+  for (const std::string& key : node.Keys())
+    out[ClassKey(node, key)] = node.Get<double>(key, 0.0, 1.0);
+  node.Finish();
+  return out;
+}
+
 }  // namespace
 
 ErrorModel ErrorModel::None() {
@@ -159,6 +169,17 @@ void ErrorModel::Validate() const {
       RequireProbability(*in_row->wall_false_door_after_seen, "in_row.wall_false_door_after_seen");
     }
     ValidateClassRates(in_row->by_class, "in_row.by_class.");
+    if (in_row->door_missed_after_missed.empty() != in_row->door_missed_after_seen.empty()) {
+      throw std::invalid_argument(
+          "in_row: door_missed_after_missed and door_missed_after_seen go together");
+    }
+    for (const auto* rates : {&in_row->door_missed_after_missed, &in_row->door_missed_after_seen}) {
+      for (const auto& [c, p] : *rates) {
+        RequireProbability(p, std::string("in_row.door_missed_after_") +
+                                  (rates == &in_row->door_missed_after_seen ? "seen." : "missed.") +
+                                  std::string(map::DoorClassName(c)));
+      }
+    }
   }
   if (wall_over_missed_door) ValidateWallOverMissedDoor(*wall_over_missed_door);
   RequireProbability(leaf_split, "leaf_split");
@@ -325,6 +346,16 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
       in_row.wall_false_door_after_seen = row.Get<double>("wall_false_door_after_seen", 0.0, 1.0);
     }
     if (row.Has("by_class")) in_row.by_class = ReadClassRates(row, "by_class");
+    if (row.Has("door_missed_after_missed") != row.Has("door_missed_after_seen")) {
+      row.Fail(row.Has("door_missed_after_missed") ? "door_missed_after_missed"
+                                                   : "door_missed_after_seen",
+               "door_missed_after_missed and door_missed_after_seen go together");
+    }
+    if (row.Has("door_missed_after_missed")) {
+      in_row.door_missed_after_missed =
+          ReadClassProbabilities(row.Child("door_missed_after_missed"));
+      in_row.door_missed_after_seen = ReadClassProbabilities(row.Child("door_missed_after_seen"));
+    }
     row.Finish();
     m.in_row = in_row;
   }
@@ -394,6 +425,16 @@ static void MixUnsurveyed(const ErrorModel& model, const map::MatchIndex& index,
   }
 }
 
+double Confusion::RowMissed(int k, Before before) const {
+  if (!row_missed_by_before || before == Before::kUnknown) return row_missed[k];
+  return before == Before::kDoorMissed ? row_missed_after_missed[k] : row_missed_after_seen[k];
+}
+
+double Confusion::RowReadFactor(int k, Before before) const {
+  const double left = 1.0 - row_missed[k];
+  return left > 0.0 ? (1.0 - RowMissed(k, before)) / left : 1.0;
+}
+
 double Confusion::FalseDoorIn(double len_in, bool row, Before before) const {
   if (row && row_false_door_by_before && before != Before::kUnknown) {
     return before == Before::kDoorMissed ? row_false_door_after_missed : row_false_door_after_seen;
@@ -415,13 +456,22 @@ static void ResolveClassRates(const ErrorModel& model, Confusion* c) {
     c->row_correct[k] = c->class_correct[k];
     c->row_missized[k] = c->class_missized[k];
     c->row_missed[k] = c->class_missed[k];
+    c->row_missed_after_missed[k] = c->row_missed_after_seen[k] = c->class_missed[k];
     if (!model.in_row) continue;
+    const auto own_after = [k](const std::map<DoorClass, double>& rates, double* out) {
+      const auto it = rates.find(static_cast<DoorClass>(k));
+      if (it != rates.end()) *out = it->second;
+    };
     const auto row = model.in_row->by_class.find(static_cast<DoorClass>(k));
     if (row == model.in_row->by_class.end()) continue;
     c->row_correct[k] = row->second.correct;
     c->row_missized[k] = row->second.missized;
     c->row_missed[k] = row->second.missed;
+    c->row_missed_after_missed[k] = c->row_missed_after_seen[k] = row->second.missed;
+    own_after(model.in_row->door_missed_after_missed, &c->row_missed_after_missed[k]);
+    own_after(model.in_row->door_missed_after_seen, &c->row_missed_after_seen[k]);
   }
+  c->row_missed_by_before = model.in_row && !model.in_row->door_missed_after_missed.empty();
 }
 
 Confusion Resolve(const ErrorModel& model, const map::MatchIndex& index) {
@@ -695,7 +745,19 @@ static std::string FormatInRow(const ErrorModel::InRow& row) {
     out += "    wall_false_door_after_missed: " + number(*row.wall_false_door_after_missed) +
            "\n    wall_false_door_after_seen: " + number(*row.wall_false_door_after_seen) + "\n";
   }
-  return out + FormatClassRates(row.by_class, "    ");
+  out += FormatClassRates(row.by_class, "    ");
+  for (const auto* rates : {&row.door_missed_after_missed, &row.door_missed_after_seen}) {
+    if (rates->empty()) continue;
+    out += rates == &row.door_missed_after_missed ? "    door_missed_after_missed: {"
+                                                  : "    door_missed_after_seen: {";
+    const char* sep = "";
+    for (const auto& [c, p] : *rates) {
+      out += std::string(sep) + "\"" + std::string(map::DoorClassName(c)) + "\": " + number(p);
+      sep = ", ";
+    }
+    out += "}\n";
+  }
+  return out;
 }
 
 std::string FormatErrorModelYaml(const ErrorModel& m, const std::string& comment) {

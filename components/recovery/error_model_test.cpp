@@ -238,6 +238,76 @@ TEST(ErrorModelFile, ReadsTheRowWallsRatesByTheDoorBeforeAndWritesThemBack) {
   EXPECT_DOUBLE_EQ(c.FalseDoorIn(90, false, Confusion::Before::kDoorMissed), 0.1591);
 }
 
+TEST(ErrorModelFile, ReadsARowsMissedRatesByTheDoorBeforeAndWritesThemBack) {
+  const ErrorModel m =
+      ParseErrorModel(Model("  in_row:\n"
+                            "    by_class:\n"
+                            "      \"36\": {correct: 0.7, missized: 0.15, missed: 0.15}\n"
+                            "    door_missed_after_missed: {\"36\": 0.4}\n"
+                            "    door_missed_after_seen: {\"36\": 0.05}\n"),
+                      "m.yaml");
+  ASSERT_TRUE(m.in_row);
+  EXPECT_DOUBLE_EQ(m.in_row->door_missed_after_missed.at(DoorClass::k36), 0.4);
+  EXPECT_DOUBLE_EQ(m.in_row->door_missed_after_seen.at(DoorClass::k36), 0.05);
+  const ErrorModel back = ParseErrorModel(FormatErrorModelYaml(m, "x"), "back.yaml");
+  ASSERT_TRUE(back.in_row);
+  EXPECT_EQ(back.in_row->door_missed_after_missed, m.in_row->door_missed_after_missed);
+  EXPECT_EQ(back.in_row->door_missed_after_seen, m.in_row->door_missed_after_seen);
+  // Resolved: a 36 in door of a row by the door before it, its reads sharing what is left;
+  // not known, and every class the file does not list, as before.
+  const Confusion c = Resolve(m, map::MatchIndex(testing::CorridorMap()));
+  const int k36 = static_cast<int>(DoorClass::k36), k40 = static_cast<int>(DoorClass::k40);
+  EXPECT_TRUE(c.row_missed_by_before);
+  EXPECT_DOUBLE_EQ(c.RowMissed(k36, Confusion::Before::kDoorMissed), 0.4);
+  EXPECT_DOUBLE_EQ(c.RowMissed(k36, Confusion::Before::kDoorSeen), 0.05);
+  EXPECT_DOUBLE_EQ(c.RowMissed(k36, Confusion::Before::kUnknown), 0.15);
+  EXPECT_DOUBLE_EQ(c.RowReadFactor(k36, Confusion::Before::kDoorMissed), 0.6 / 0.85);
+  EXPECT_DOUBLE_EQ(c.RowReadFactor(k36, Confusion::Before::kDoorSeen), 0.95 / 0.85);
+  EXPECT_DOUBLE_EQ(c.RowReadFactor(k36, Confusion::Before::kUnknown), 1.0);
+  EXPECT_DOUBLE_EQ(c.RowMissed(k40, Confusion::Before::kDoorMissed), 0.0612);
+  EXPECT_DOUBLE_EQ(c.RowReadFactor(k40, Confusion::Before::kDoorSeen), 1.0);
+  // Without them a row's doors are missed alike whatever came before.
+  const Confusion flat =
+      Resolve(ParseErrorModel(Model(""), "m.yaml"), map::MatchIndex(testing::CorridorMap()));
+  EXPECT_FALSE(flat.row_missed_by_before);
+  EXPECT_DOUBLE_EQ(flat.RowMissed(k36, Confusion::Before::kDoorMissed), 0.0612);
+}
+
+TEST(ErrorModelFile, ARowsMissedRateByTheDoorBeforeAloneOrOutOfRangeIsRejected) {
+  try {
+    ParseErrorModel(Model("  in_row:\n"
+                          "    wall_false_door: 0.44\n"
+                          "    door_missed_after_seen: {\"36\": 0.05}\n"),
+                    "m.yaml");
+    FAIL() << "accepted door_missed_after_seen alone";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_NE(e.key().find("door_missed_after_seen"), std::string::npos) << e.key();
+    EXPECT_NE(e.reason().find("go together"), std::string::npos) << e.reason();
+  }
+  try {
+    ParseErrorModel(Model("  in_row:\n"
+                          "    door_missed_after_missed: {\"36\": 1.4}\n"
+                          "    door_missed_after_seen: {\"36\": 0.05}\n"),
+                    "m.yaml");
+    FAIL() << "accepted a rate of 1.4";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 8);
+    EXPECT_NE(e.key().find("36"), std::string::npos) << e.key();
+  }
+  EXPECT_THROW(ParseErrorModel(Model("  in_row:\n"
+                                     "    door_missed_after_missed: {\"37\": 0.4}\n"
+                                     "    door_missed_after_seen: {\"36\": 0.05}\n"),
+                               "m.yaml"),
+               InputError);
+  ErrorModel m = ErrorModel::Paper();
+  m.in_row = ErrorModel::InRow{};
+  m.in_row->door_missed_after_missed[DoorClass::k36] = 0.4;
+  EXPECT_THROW(m.Validate(), std::invalid_argument);
+  m.in_row->door_missed_after_seen[DoorClass::k36] = -0.1;
+  EXPECT_THROW(m.Validate(), std::invalid_argument);
+}
+
 TEST(ErrorModelFile, ReadsTheWallsOverMissedDoorsAndWritesThemBack) {
   const ErrorModel m =
       ParseErrorModel(Model("  wall_over_missed_door: {bias_in: 3.5, sigma_in: 3.1}\n"), "m.yaml");

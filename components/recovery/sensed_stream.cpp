@@ -107,6 +107,9 @@ void SensedStream::ProcessNextTrueEdge() {
   }
   const Confusion::Before before = before_;
   before_ = Confusion::Before::kUnknown;
+  // A door after a short wall of a row is read by the door before that wall.
+  row_door_before_ =
+      code == map::kWallCode && index_.in_row(g) ? before : Confusion::Before::kUnknown;
   if (code == map::kWallCode) {
     if (leaf_to_next_in_ > 0.0) {
       // The other leaf of the door before, read as part of this wall.
@@ -126,14 +129,18 @@ void SensedStream::ProcessNextTrueEdge() {
 void SensedStream::SenseDoor(Piece p, map::SymbolCode code, double len) {
   const int k = code - 1;
   const bool row = index_.in_row(p.truth);
+  // In a row, the door before the short wall in front of this one moves the missed rate and
+  // the reads share what is left (Confusion::RowMissed): the filter's BayesLocalizer::RowLinked.
+  const double f = row ? confusion_.RowReadFactor(k, row_door_before_) : 1.0;
+  row_door_before_ = Confusion::Before::kUnknown;
   const double u = Uniform();
-  if (u < confusion_.Correct(k, row)) {
+  if (u < confusion_.Correct(k, row) * f) {
     p.kind = Piece::kDoor;
     p.code = code;
     p.true_width_in = len;
     p.whole_edge = true;
     p.mark = DrawMark(p.truth);
-  } else if (u < confusion_.Correct(k, row) + confusion_.Missized(k, row)) {
+  } else if (u < (confusion_.Correct(k, row) + confusion_.Missized(k, row)) * f) {
     p.kind = Piece::kDoor;
     p.code = map::DoorCode(static_cast<map::DoorClass>(DrawClass(confusion_.missized_to[k])));
     p.true_width_in = len;

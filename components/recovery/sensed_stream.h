@@ -162,6 +162,8 @@ class SensedStream {
   // How the true edge just processed was read, when it was a door (a row wall's false-door
   // rate depends on it); kUnknown after any other edge.
   Confusion::Before before_ = Confusion::Before::kUnknown;
+  // The door before the short wall of a row sensed last (kUnknown after any other edge).
+  Confusion::Before row_door_before_ = Confusion::Before::kUnknown;
   double leaf_to_next_in_ = 0.0;  // a leaf's width the next true edge, a wall, begins with
   bool ended_ = false;
   // The wall surface being accumulated into one sensed wall.

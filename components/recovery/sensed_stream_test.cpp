@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -194,6 +195,40 @@ TEST_F(SensedStreamTest, ARowWallHoldsAFalseDoorByTheDoorBeforeIt) {
   }
   EXPECT_GT(after_missed, 20);
   EXPECT_GT(after_seen, 20);
+}
+
+TEST_F(SensedStreamTest, ARowsDoorIsMissedByTheDoorBeforeIt) {
+  const map::Map row_map = RowMap();
+  const map::MatchIndex index(row_map);
+  ErrorModel em = ErrorModel::None();
+  em.in_row = ErrorModel::InRow{};
+  em.in_row->by_class[map::DoorClass::k36] = {0.5, 0.0, 0.5};
+  // Each door after a short wall does what the door before it did; the row's first door
+  // (after the 120 in wall, or the 200 in one going back) is missed half the time.
+  em.in_row->door_missed_after_missed[map::DoorClass::k36] = 1.0;
+  em.in_row->door_missed_after_seen[map::DoorClass::k36] = 0.0;
+  em.Validate();
+  const Confusion c = Resolve(em, index);
+  std::map<int, int> passes;  // doors sensed in one pass of the row -> passes
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    SensedStream s(index, c, quiet_, exact_, seed);
+    int doors = 0;
+    bool whole = false;  // a pass counted from its start
+    for (int i = 0; i < 40; ++i) {
+      const StreamEdge* e = s.At(i);
+      if (e->truth == 8) {  // the 200 in wall between the corners: one per pass
+        if (whole) ++passes[doors];
+        whole = true;
+        doors = 0;
+      } else if (map::IsDoorCode(e->sensed.code)) {
+        ++doors;
+      }
+    }
+  }
+  // All four doors seen or none: without the rates by the door before, 1 to 3 as well.
+  for (const auto& [doors, n] : passes) EXPECT_TRUE(doors == 0 || doors == 4) << doors << " x" << n;
+  EXPECT_GT(passes[0], 5);
+  EXPECT_GT(passes[4], 5);
 }
 
 TEST_F(SensedStreamTest, ThePerInchModelPutsUpToItsMostFalseDoorsInOneWall) {

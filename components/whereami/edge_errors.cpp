@@ -45,6 +45,7 @@ void EdgeErrorCounts::Add(const EdgeErrorCounts& o) {
   for (int r = 0; r < 2; ++r) {
     for (int k = 0; k < map::kDoorClassCount; ++k) add(by_row[r][k], o.by_row[r][k]);
     walls_by_row[r].Add(o.walls_by_row[r]);
+    for (int k = 0; k < map::kDoorClassCount; ++k) add(row_by_before[r][k], o.row_by_before[r][k]);
   }
   for (std::size_t b = 0; b < walls_by_length.size(); ++b)
     walls_by_length[b].Add(o.walls_by_length[b]);
@@ -80,6 +81,26 @@ recovery::ErrorModel::DoorRates Shrunk(const EdgeErrorCounts::DoorTally& t,
           (t.missed + w * prior.missed) / n};
 }
 
+// The missed rates of a row's doors after a missed and after a seen door before them, each
+// class's shrunk towards its rate in a row by kClassPriorDoors doors' worth; none unless
+// doors of a row were passed after both.
+void SetRowMissedByBefore(const EdgeErrorCounts& c, recovery::ErrorModel::InRow* in_row) {
+  long after[2] = {0, 0};
+  for (int b = 0; b < 2; ++b) {
+    for (const EdgeErrorCounts::DoorTally& t : c.row_by_before[b]) after[b] += t.passed;
+  }
+  if (after[0] == 0 || after[1] == 0) return;
+  const double prior = EdgeErrorCounts::kClassPriorDoors;
+  for (const auto& [cls, rates] : in_row->by_class) {
+    const int k = static_cast<int>(cls);
+    for (int b = 0; b < 2; ++b) {
+      const EdgeErrorCounts::DoorTally& t = c.row_by_before[b][k];
+      auto& out = b == 1 ? in_row->door_missed_after_missed : in_row->door_missed_after_seen;
+      out[cls] = (t.missed + prior * rates.missed) / (t.passed + prior);
+    }
+  }
+}
+
 // The per-class door rates: each class's tally shrunk towards the overall rates, and split
 // into doors alone and in a row (and the false doors of the short walls between doors apart
 // from the other walls') where the runs passed any (ErrorModel::in_row).
@@ -109,6 +130,7 @@ void SetClassRates(const EdgeErrorCounts& c, recovery::ErrorModel* m) {
     const auto walls = [&](const EdgeErrorCounts::WallTally& w) {
       return std::min(1.0, (w.false_doors + prior * m->wall_false_door) / (w.walls + prior));
     };
+    SetRowMissedByBefore(c, &in_row);
     in_row.wall_false_door = walls(row_walls);
     m->wall_false_door = walls(c.walls_by_row[0]);
     m->in_row = in_row;
@@ -507,8 +529,19 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       Tally* const tallies[] = {&c.by_width[static_cast<int>(std::lround(edge.metric_in))],
                                 &c.by_class[cls],
                                 &c.by_row[map::InDoorRow(view_ring, passed[p].edge)][cls]};
-      const auto count = [&tallies](long Tally::*field) {
+      // A door of a row after the short wall past the door before it: by that door too.
+      Tally* row_tally = nullptr;
+      if (p >= 3 && map::InDoorRow(view_ring, passed[p].edge) &&
+          view_ring.edges[passed[p - 1].edge].IsWall() &&
+          map::InDoorRow(view_ring, passed[p - 1].edge) &&
+          view_ring.edges[passed[p - 2].edge].door_class &&
+          std::min(passed[p - 2].first_in, passed[p - 2].last_in) >= lo) {
+        const bool before_missed = doors_on.count(static_cast<int>(p - 2)) == 0;
+        row_tally = &c.row_by_before[before_missed ? 1 : 0][cls];
+      }
+      const auto count = [&tallies, row_tally](long Tally::*field) {
         for (Tally* t : tallies) ++(t->*field);
+        if (row_tally) ++(row_tally->*field);
       };
       count(&Tally::passed);
       if (it == doors_on.end()) {

@@ -82,6 +82,10 @@ struct EdgeErrorCounts {
     }
   };
   std::array<WallTally, 2> walls_by_row{};
+  // The doors of a row by the door before them across the short wall between
+  // ([before missed][class]): the in-row missed rates after a missed and after a seen door
+  // (ErrorModel::InRow::door_missed_after_missed, _after_seen).
+  std::array<std::array<DoorTally, map::kDoorClassCount>, 2> row_by_before{};
   // The true walls between two true doors ([0]: at least map::kRowWallIn long, [1]: shorter)
   // by whether the door before them (in the direction of travel) and the door after them
   // were missed ([before missed][after missed]), with the walls that held a false door (a

@@ -118,6 +118,17 @@ TEST(EdgeErrorsTest, TalliesDoorsInARowApartFromDoorsAloneAndTheShortWallsBetwee
   EXPECT_EQ(alone36.passed, 1);
   EXPECT_EQ(alone36.correct, 1);
   EXPECT_EQ(c.by_row[0][cls(map::DoorClass::k36_36)].passed, 0);
+  // By the door before across a short wall: the double door after the first 36 in door
+  // (seen) was missed, the 36 in door after the double door (missed) was read; the first
+  // door and the one after the 100 in wall have none.
+  const auto& after_seen = c.row_by_before[0];
+  const auto& after_missed = c.row_by_before[1];
+  EXPECT_EQ(after_seen[cls(map::DoorClass::k36_36)].passed, 1);
+  EXPECT_EQ(after_seen[cls(map::DoorClass::k36_36)].missed, 1);
+  EXPECT_EQ(after_seen[cls(map::DoorClass::k36)].passed, 0);
+  EXPECT_EQ(after_missed[cls(map::DoorClass::k36)].passed, 1);
+  EXPECT_EQ(after_missed[cls(map::DoorClass::k36)].correct, 1);
+  EXPECT_EQ(after_missed[cls(map::DoorClass::k36_36)].passed, 0);
   // The two 46 in walls lie between doors; the 100 in wall between the last two doors is
   // not short (the first and the last wall are not passed whole).
   EXPECT_EQ(c.walls_by_row[1].walls, 2);
@@ -151,6 +162,14 @@ TEST(EdgeErrorsTest, TalliesDoorsInARowApartFromDoorsAloneAndTheShortWallsBetwee
   // Never seen alone: its class's rates.
   EXPECT_NEAR(m.by_class.at(map::DoorClass::k36_36).correct, class72, 1e-12);
   EXPECT_NEAR(*m.in_row->wall_false_door, (1 + k / 3) / (2 + k), 1e-12);
+  // The missed rates by the door before, each shrunk towards the class's in a row.
+  const double row36_missed = m.in_row->by_class.at(map::DoorClass::k36).missed;
+  const double row72_missed = m.in_row->by_class.at(map::DoorClass::k36_36).missed;
+  EXPECT_NEAR(m.in_row->door_missed_after_missed.at(map::DoorClass::k36),
+              k * row36_missed / (1 + k), 1e-12);
+  EXPECT_NEAR(m.in_row->door_missed_after_seen.at(map::DoorClass::k36), row36_missed, 1e-12);
+  EXPECT_NEAR(m.in_row->door_missed_after_seen.at(map::DoorClass::k36_36),
+              (1 + k * row72_missed) / (1 + k), 1e-12);
   EXPECT_NEAR(m.wall_false_door, (0 + k / 3) / (1 + k), 1e-12);
   // Per inch: the other walls' false doors over their length (none on 100 in).
   ASSERT_TRUE(m.wall_false_door_per_in.has_value());
