@@ -132,8 +132,9 @@ int TallyMeasuredRuns(const RunSetup& setup, const ToolOptions& options, std::os
   return failed;
 }
 
-// Doors alone and in a row, by class, and the false doors on the short walls between doors
-// against the other walls (EdgeErrorCounts::by_row, walls_by_row).
+// Doors alone and in a row, by class, a row's doors by the door before them, and the false
+// doors on the short walls between doors against the other walls (EdgeErrorCounts::by_row,
+// row_by_before, walls_by_row).
 void PrintRowTallies(const EdgeErrorCounts& total, std::ostream& out) {
   const auto rates = [](const EdgeErrorCounts::DoorTally& t) {
     return fmt::format("{:>4} {:>4} {:>4} {:>4} ({:>3.0f} % missed)", t.passed, t.correct,
@@ -150,6 +151,18 @@ void PrintRowTallies(const EdgeErrorCounts& total, std::ostream& out) {
     out << fmt::format("    {:>5}  alone {}   in a row {}\n",
                        map::DoorClassName(static_cast<map::DoorClass>(k)), rates(alone),
                        rates(row));
+  }
+  out << fmt::format(
+      "  doors of a row past a wall under {:g} in from the door before it, by that door: "
+      "passed, with their class, mis-sized, missed\n",
+      map::kRowWallIn);
+  for (int k = 0; k < map::kDoorClassCount; ++k) {
+    const EdgeErrorCounts::DoorTally& seen = total.row_by_before[0][k];
+    const EdgeErrorCounts::DoorTally& missed = total.row_by_before[1][k];
+    if (seen.passed + missed.passed == 0) continue;
+    out << fmt::format("    {:>5}  after a seen door {}   after a missed door {}\n",
+                       map::DoorClassName(static_cast<map::DoorClass>(k)), rates(seen),
+                       rates(missed));
   }
   const auto per_wall = [](const EdgeErrorCounts::WallTally& w) {
     return fmt::format("{:.1f} % ({} on {} walls)",
