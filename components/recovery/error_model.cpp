@@ -109,6 +109,31 @@ static void ValidateWallOverMissedDoor(const ErrorModel::WallOverMissedDoor& w) 
   }
 }
 
+// ErrorModel::Validate() of the `in_row:` rates.
+static void ValidateInRow(const ErrorModel::InRow& row) {
+  if (row.wall_false_door) RequireProbability(*row.wall_false_door, "in_row.wall_false_door");
+  if (row.wall_false_door_after_missed.has_value() != row.wall_false_door_after_seen.has_value()) {
+    throw std::invalid_argument(
+        "in_row: wall_false_door_after_missed and wall_false_door_after_seen go together");
+  }
+  if (row.wall_false_door_after_missed) {
+    RequireProbability(*row.wall_false_door_after_missed, "in_row.wall_false_door_after_missed");
+    RequireProbability(*row.wall_false_door_after_seen, "in_row.wall_false_door_after_seen");
+  }
+  ValidateClassRates(row.by_class, "in_row.by_class.");
+  if (row.door_missed_after_missed.empty() != row.door_missed_after_seen.empty()) {
+    throw std::invalid_argument(
+        "in_row: door_missed_after_missed and door_missed_after_seen go together");
+  }
+  for (const auto* rates : {&row.door_missed_after_missed, &row.door_missed_after_seen}) {
+    for (const auto& [c, p] : *rates) {
+      RequireProbability(p, std::string("in_row.door_missed_after_") +
+                                (rates == &row.door_missed_after_seen ? "seen." : "missed.") +
+                                std::string(map::DoorClassName(c)));
+    }
+  }
+}
+
 void ErrorModel::Validate() const {
   RequireProbability(door_correct, "door_correct");
   RequireProbability(door_missized, "door_missized");
@@ -155,32 +180,7 @@ void ErrorModel::Validate() const {
                                 ", not in [1, 9]");
   }
   ValidateClassRates(by_class, "by_class.");
-  if (in_row) {
-    if (in_row->wall_false_door)
-      RequireProbability(*in_row->wall_false_door, "in_row.wall_false_door");
-    if (in_row->wall_false_door_after_missed.has_value() !=
-        in_row->wall_false_door_after_seen.has_value()) {
-      throw std::invalid_argument(
-          "in_row: wall_false_door_after_missed and wall_false_door_after_seen go together");
-    }
-    if (in_row->wall_false_door_after_missed) {
-      RequireProbability(*in_row->wall_false_door_after_missed,
-                         "in_row.wall_false_door_after_missed");
-      RequireProbability(*in_row->wall_false_door_after_seen, "in_row.wall_false_door_after_seen");
-    }
-    ValidateClassRates(in_row->by_class, "in_row.by_class.");
-    if (in_row->door_missed_after_missed.empty() != in_row->door_missed_after_seen.empty()) {
-      throw std::invalid_argument(
-          "in_row: door_missed_after_missed and door_missed_after_seen go together");
-    }
-    for (const auto* rates : {&in_row->door_missed_after_missed, &in_row->door_missed_after_seen}) {
-      for (const auto& [c, p] : *rates) {
-        RequireProbability(p, std::string("in_row.door_missed_after_") +
-                                  (rates == &in_row->door_missed_after_seen ? "seen." : "missed.") +
-                                  std::string(map::DoorClassName(c)));
-      }
-    }
-  }
+  if (in_row) ValidateInRow(*in_row);
   if (wall_over_missed_door) ValidateWallOverMissedDoor(*wall_over_missed_door);
   RequireProbability(leaf_split, "leaf_split");
   RequireProbability(leaf_sliver, "leaf_sliver");
@@ -289,6 +289,36 @@ static void ReadMarks(const StrictYaml& node, ErrorModel* m) {
   }
 }
 
+// The `in_row:` block under `node`.
+static ErrorModel::InRow ReadInRow(const StrictYaml& node) {
+  const StrictYaml row = node.Child("in_row");
+  if (!row.IsMap()) node.Fail("in_row", "expected a mapping with wall_false_door and by_class");
+  ErrorModel::InRow in_row;
+  if (row.Has("wall_false_door"))
+    in_row.wall_false_door = row.Get<double>("wall_false_door", 0.0, 1.0);
+  if (row.Has("wall_false_door_after_missed") != row.Has("wall_false_door_after_seen")) {
+    row.Fail(row.Has("wall_false_door_after_missed") ? "wall_false_door_after_missed"
+                                                     : "wall_false_door_after_seen",
+             "wall_false_door_after_missed and wall_false_door_after_seen go together");
+  }
+  if (row.Has("wall_false_door_after_missed")) {
+    in_row.wall_false_door_after_missed = row.Get<double>("wall_false_door_after_missed", 0.0, 1.0);
+    in_row.wall_false_door_after_seen = row.Get<double>("wall_false_door_after_seen", 0.0, 1.0);
+  }
+  if (row.Has("by_class")) in_row.by_class = ReadClassRates(row, "by_class");
+  if (row.Has("door_missed_after_missed") != row.Has("door_missed_after_seen")) {
+    row.Fail(
+        row.Has("door_missed_after_missed") ? "door_missed_after_missed" : "door_missed_after_seen",
+        "door_missed_after_missed and door_missed_after_seen go together");
+  }
+  if (row.Has("door_missed_after_missed")) {
+    in_row.door_missed_after_missed = ReadClassProbabilities(row.Child("door_missed_after_missed"));
+    in_row.door_missed_after_seen = ReadClassProbabilities(row.Child("door_missed_after_seen"));
+  }
+  row.Finish();
+  return in_row;
+}
+
 static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
   const StrictYaml node = root.Child("error_model");
   ErrorModel m;
@@ -329,36 +359,7 @@ static ErrorModel ErrorModelFromYaml(const StrictYaml& root) {
     m.false_door_classes = ReadDistribution(node.Child("false_door_classes"));
   }
   if (node.Has("by_class")) m.by_class = ReadClassRates(node, "by_class");
-  if (node.Has("in_row")) {
-    const StrictYaml row = node.Child("in_row");
-    if (!row.IsMap()) node.Fail("in_row", "expected a mapping with wall_false_door and by_class");
-    ErrorModel::InRow in_row;
-    if (row.Has("wall_false_door"))
-      in_row.wall_false_door = row.Get<double>("wall_false_door", 0.0, 1.0);
-    if (row.Has("wall_false_door_after_missed") != row.Has("wall_false_door_after_seen")) {
-      row.Fail(row.Has("wall_false_door_after_missed") ? "wall_false_door_after_missed"
-                                                       : "wall_false_door_after_seen",
-               "wall_false_door_after_missed and wall_false_door_after_seen go together");
-    }
-    if (row.Has("wall_false_door_after_missed")) {
-      in_row.wall_false_door_after_missed =
-          row.Get<double>("wall_false_door_after_missed", 0.0, 1.0);
-      in_row.wall_false_door_after_seen = row.Get<double>("wall_false_door_after_seen", 0.0, 1.0);
-    }
-    if (row.Has("by_class")) in_row.by_class = ReadClassRates(row, "by_class");
-    if (row.Has("door_missed_after_missed") != row.Has("door_missed_after_seen")) {
-      row.Fail(row.Has("door_missed_after_missed") ? "door_missed_after_missed"
-                                                   : "door_missed_after_seen",
-               "door_missed_after_missed and door_missed_after_seen go together");
-    }
-    if (row.Has("door_missed_after_missed")) {
-      in_row.door_missed_after_missed =
-          ReadClassProbabilities(row.Child("door_missed_after_missed"));
-      in_row.door_missed_after_seen = ReadClassProbabilities(row.Child("door_missed_after_seen"));
-    }
-    row.Finish();
-    m.in_row = in_row;
-  }
+  if (node.Has("in_row")) m.in_row = ReadInRow(node);
   if (node.Has("wall_over_missed_door")) {
     const StrictYaml w = node.Child("wall_over_missed_door");
     if (!w.IsMap()) node.Fail("wall_over_missed_door", "expected {bias_in: X, sigma_in: Y}");

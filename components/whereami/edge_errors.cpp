@@ -500,6 +500,25 @@ void CountWallByNeighbours(const map::Ring& view_ring, const std::vector<int>& p
   t.false_doors += false_door;
 }
 
+// The tally of EdgeErrorCounts::row_by_before the door at passage p counts in: a door of a
+// row after the short wall past the door before it, by whether that door was missed; null
+// for any other door.
+EdgeErrorCounts::DoorTally* RowTallyByBefore(
+    const map::Ring& view_ring, const std::vector<Passage>& passed,
+    const std::map<int, std::vector<std::size_t>>& doors_on, std::size_t p, double lo,
+    EdgeErrorCounts* c) {
+  if (p < 3 || !map::InDoorRow(view_ring, passed[p].edge)) return nullptr;
+  const map::Edge& wall = view_ring.edges[passed[p - 1].edge];
+  const map::Edge& door = view_ring.edges[passed[p - 2].edge];
+  if (!wall.IsWall() || !map::InDoorRow(view_ring, passed[p - 1].edge) || !door.door_class ||
+      std::min(passed[p - 2].first_in, passed[p - 2].last_in) < lo) {
+    return nullptr;
+  }
+  const bool before_missed = doors_on.count(static_cast<int>(p - 2)) == 0;
+  const int cls = static_cast<int>(*view_ring.edges[passed[p].edge].door_class);
+  return &c->row_by_before[before_missed ? 1 : 0][cls];
+}
+
 }  // namespace
 
 EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
@@ -529,16 +548,7 @@ EdgeErrorCounts CompareWithTruth(const map::Ring& view_ring,
       Tally* const tallies[] = {&c.by_width[static_cast<int>(std::lround(edge.metric_in))],
                                 &c.by_class[cls],
                                 &c.by_row[map::InDoorRow(view_ring, passed[p].edge)][cls]};
-      // A door of a row after the short wall past the door before it: by that door too.
-      Tally* row_tally = nullptr;
-      if (p >= 3 && map::InDoorRow(view_ring, passed[p].edge) &&
-          view_ring.edges[passed[p - 1].edge].IsWall() &&
-          map::InDoorRow(view_ring, passed[p - 1].edge) &&
-          view_ring.edges[passed[p - 2].edge].door_class &&
-          std::min(passed[p - 2].first_in, passed[p - 2].last_in) >= lo) {
-        const bool before_missed = doors_on.count(static_cast<int>(p - 2)) == 0;
-        row_tally = &c.row_by_before[before_missed ? 1 : 0][cls];
-      }
+      Tally* const row_tally = RowTallyByBefore(view_ring, passed, doors_on, p, lo, &c);
       const auto count = [&tallies, row_tally](long Tally::*field) {
         for (Tally* t : tallies) ++(t->*field);
         if (row_tally) ++(row_tally->*field);
