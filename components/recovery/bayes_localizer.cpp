@@ -158,20 +158,12 @@ double BayesLocalizer::ReadFactorAfter(int wall, int door, Confusion::Before bef
   return model_.confusion.RowReadFactor(index_.code(door) - 1, before);
 }
 
-double BayesLocalizer::MissedFrom(int from, int door) const {
+double BayesLocalizer::MixedFrom(int from, int door, RowRate rate) const {
   const double seen = prev_seen_[from], missed = prev_missed_[from];
   using B = Confusion::Before;
-  return seen * MissedAfter(from / 2, door, B::kDoorSeen) +
-         missed * MissedAfter(from / 2, door, B::kDoorMissed) +
-         (1.0 - seen - missed) * MissedAfter(from / 2, door, B::kUnknown);
-}
-
-double BayesLocalizer::ReadFactorFrom(int from, int door) const {
-  const double seen = prev_seen_[from], missed = prev_missed_[from];
-  using B = Confusion::Before;
-  return seen * ReadFactorAfter(from / 2, door, B::kDoorSeen) +
-         missed * ReadFactorAfter(from / 2, door, B::kDoorMissed) +
-         (1.0 - seen - missed) * ReadFactorAfter(from / 2, door, B::kUnknown);
+  return seen * (this->*rate)(from / 2, door, B::kDoorSeen) +
+         missed * (this->*rate)(from / 2, door, B::kDoorMissed) +
+         (1.0 - seen - missed) * (this->*rate)(from / 2, door, B::kUnknown);
 }
 
 void BayesLocalizer::AddEnd(int s, double mass, Confusion::Before before) {
@@ -477,7 +469,7 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
   } else if (wall && map::IsDoorCode(code1)) {
     // A missed door seen as wall surface (at a corner), maybe with the wall after it.
     const double d = index_.metric(n1);
-    const double missed = MissedFrom(State(g, dir), n1);
+    const double missed = MixedFrom(State(g, dir), n1, &BayesLocalizer::MissedAfter);
     nn_[s1] += pn * angle * missed * WallDensity(e.metric_in, d);
     const int w = index_.Step(n1, dir);
     if (w >= 0 && index_.code(w) == map::kWallCode) {
@@ -491,7 +483,8 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
     }
   } else if (door && map::IsDoorCode(code1)) {
     // Read: its rates by the door before the wall the state ended in (a row's doors).
-    NextLeafFromEnd(n1, dir, pn * ReadFactorFrom(State(g, dir), n1), angle, e);
+    NextLeafFromEnd(n1, dir, pn * MixedFrom(State(g, dir), n1, &BayesLocalizer::ReadFactorAfter),
+                    angle, e);
   } else if (!door && !wall && code1 == e.code) {
     nn_[s1] += pn * angle * WallDensity(e.metric_in, index_.metric(n1));
   }

@@ -128,10 +128,10 @@ class BayesLocalizer {
   // `before`: its missed rate, and the factor its read rates take (1 when not row-linked).
   double MissedAfter(int wall, int door, Confusion::Before before) const;
   double ReadFactorAfter(int wall, int door, Confusion::Before before) const;
-  // The same for the door after N of state `from` (a wall), the door before that wall as
-  // that state's belief passed it (prev_seen_, prev_missed_).
-  double MissedFrom(int from, int door) const;
-  double ReadFactorFrom(int from, int door) const;
+  // One of the two for the door after N of state `from` (a wall), mixed over the door before
+  // that wall as that state's belief passed it (prev_seen_, prev_missed_).
+  using RowRate = double (BayesLocalizer::*)(int, int, Confusion::Before) const;
+  double MixedFrom(int from, int door, RowRate rate) const;
   // Adds `mass` to N of state s for the next step, the door before its edge `before`.
   void AddEnd(int s, double mass, Confusion::Before before);
   void ClearPrev();

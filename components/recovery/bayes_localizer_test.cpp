@@ -598,21 +598,24 @@ map::Map CorridorWithARowOfDoors() {
       {0, 6, 10});
 }
 
+// On CorridorWithARowOfDoors, after the walk from a corner that reads the row's first door
+// and a 276 in wall: the belief in the row (its second door missed, ending on door 5) over
+// the belief in the door alone (read as it is, ending on door 9).
+double RowOverDoorAlone(const map::MatchIndex& index, const ErrorModel& em) {
+  BayesLocalizer b = MakeLocalizer(index, em);
+  for (const map::SensedEdge& e :
+       {Wall(120), Door(DoorClass::k36), Wall(276), Door(DoorClass::k32)}) {
+    b.Add(e);
+  }
+  return b.PoseProbability(5, +1) / b.PoseProbability(9, +1);
+}
+
 TEST(BayesLocalizerRowTest, ADoorMissedInARowWeighsAsTheModelsRowsMissThem) {
   const map::Map map = CorridorWithARowOfDoors();
   const map::MatchIndex index(map);
   ASSERT_TRUE(index.in_row(1) && index.in_row(2) && index.in_row(3));
   ASSERT_FALSE(index.in_row(5) || index.in_row(7) || index.in_row(8));
-  // The belief in the row (the second door missed, ending on door 5) over the belief in the
-  // door alone (read as it is, ending on door 9), after the walk from a corner.
-  const auto ratio = [&](const ErrorModel& em) {
-    BayesLocalizer b = MakeLocalizer(index, em);
-    for (const map::SensedEdge& e :
-         {Wall(120), Door(DoorClass::k36), Wall(276), Door(DoorClass::k32)}) {
-      b.Add(e);
-    }
-    return b.PoseProbability(5, +1) / b.PoseProbability(9, +1);
-  };
+  const auto ratio = [&](const ErrorModel& em) { return RowOverDoorAlone(index, em); };
   ErrorModel alone = ErrorModel::Paper();
   alone.by_class[DoorClass::k36] = {0.90, 0.04, 0.06};
   ErrorModel rows = alone;
@@ -631,14 +634,7 @@ TEST(BayesLocalizerRowTest, ADoorMissedInARowWeighsAsTheModelsRowsMissThem) {
 TEST(BayesLocalizerRowTest, ADoorOfARowAfterASeenDoorIsMissedAtTheRateAfterASeenOne) {
   const map::Map map = CorridorWithARowOfDoors();
   const map::MatchIndex index(map);
-  const auto ratio = [&](const ErrorModel& em) {
-    BayesLocalizer b = MakeLocalizer(index, em);
-    for (const map::SensedEdge& e :
-         {Wall(120), Door(DoorClass::k36), Wall(276), Door(DoorClass::k32)}) {
-      b.Add(e);
-    }
-    return b.PoseProbability(5, +1) / b.PoseProbability(9, +1);
-  };
+  const auto ratio = [&](const ErrorModel& em) { return RowOverDoorAlone(index, em); };
   ErrorModel rows = ErrorModel::Paper();
   rows.by_class[DoorClass::k36] = {0.90, 0.04, 0.06};
   rows.in_row = ErrorModel::InRow{};
