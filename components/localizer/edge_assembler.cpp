@@ -39,11 +39,13 @@ std::optional<double> EdgeAssembler::silent_in() const {
   for (const Track& t : open_) {
     if (direction_ * (Near(t) - reach) < 0.0) reach = Near(t);
   }
+  if (held_ && direction_ * (Near(*held_) - reach) < 0.0) reach = Near(*held_);
   return std::max(0.0, direction_ * (reach - *last_jamb_in_));
 }
 
 void EdgeAssembler::Restart() {
   open_.clear();
+  held_.reset();
   corner_.reset();
   placed_.clear();
   sequence_.clear();
@@ -101,7 +103,7 @@ std::vector<map::SensedEdge> EdgeAssembler::Advance(double odometer_in, double h
          direction_ * (odometer_in_ - open_.front().along()) > config_.out_of_view_in) {
     Track t = open_.front();
     open_.erase(open_.begin());
-    if (Decide(t)) Emit(t, out);
+    Complete(t, out);
   }
   const double turn = TurnOverWindow(heading_rad);
   if (std::abs(turn) * 180.0 / M_PI < config_.turn_settled_deg) {
@@ -151,8 +153,10 @@ void EdgeAssembler::BeginCorner(double turn_rad, std::vector<map::SensedEdge>& o
   while (!open_.empty() && direction_ * (odometer_in_ - open_.front().along()) > 0.0) {
     Track t = open_.front();
     open_.erase(open_.begin());
-    if (Decide(t)) Emit(t, out);
+    Complete(t, out);
   }
+  if (held_) Emit(*held_, out);  // its rival lay across the corner
+  held_.reset();
   open_.clear();  // anything ahead was seen across the corner, on another wall
   // The wall up to the corner, then the node. The wall on the robot's side turns the same
   // way as the base: a turn toward the wall (left for the camera's side, in travel terms)
@@ -201,16 +205,13 @@ bool EdgeAssembler::Decide(Track& t) {
                              [&](const Track& o) { return overlap(t, o) > config_.max_overlap_in; }),
               open_.end());
   if (t.double_class) return true;  // the second leaf of a double door
-  const auto touches_far = [&](const Track& n) {
-    return n.frames >= config_.min_frames && std::abs(Near(n) - Far(t)) < config_.min_wall_in;
-  };
   // A wall panel between two doors, framed by their casings, looks like a door to the
   // detector. A "door" whose jambs both touch doors — the last one emitted and one already
   // in view — is that panel: leave it out, and the wall between the two real doors is
   // measured jamb to jamb as usual.
   const bool touches_previous =
       last_door_end_in_ && std::abs(Near(t) - *last_door_end_in_) < config_.min_wall_in;
-  if (touches_previous && std::any_of(open_.begin(), open_.end(), touches_far)) return false;
+  if (touches_previous && TouchesOneInView(t)) return false;
   // The first leaf of a double door: the next leaf starts at this one's far jamb (the
   // meeting stile) and is in view already; hand the double door over to it.
   for (Track& n : open_) {
@@ -228,6 +229,44 @@ bool EdgeAssembler::Decide(Track& t) {
     }
   }
   return true;
+}
+
+bool EdgeAssembler::TouchesOneInView(const Track& t) const {
+  return std::any_of(open_.begin(), open_.end(), [&](const Track& n) {
+    return std::abs(Near(n) - Far(t)) < config_.min_wall_in;
+  });
+}
+
+void EdgeAssembler::Complete(Track t, std::vector<map::SensedEdge>& out) {
+  const bool door = Decide(t);
+  if (held_) {
+    const Track h = *held_;
+    held_.reset();
+    // A row goes on past t: of h and t one is a door and the other the wall panel between
+    // it and the next door. The door is the better supported of the two (the detector pairs
+    // a door's jambs in more frames than the casings around a panel); a tie keeps h.
+    const bool row =
+        door && std::abs(Near(t) - Far(h)) < config_.min_wall_in && TouchesOneInView(t);
+    if (row && t.support > h.support) {
+      Emit(t, out);  // h was the panel: t begins the row, and the rule below keeps its phase
+      return;
+    }
+    Emit(h, out);
+    if (!door) return;
+    if (row) return;  // t is the panel between h and the next door
+  } else if (!door) {
+    return;
+  }
+  // A door that does not follow one but touches one in view begins a row of doors and the
+  // wall panels between them (each framed by two casings, a "door" to the detector), or is
+  // that row's first panel: it waits for the track after it to say which (above).
+  const bool follows_door =
+      last_door_end_in_ && std::abs(Near(t) - *last_door_end_in_) < config_.min_wall_in;
+  if (!follows_door && TouchesOneInView(t)) {
+    held_ = t;
+    return;
+  }
+  Emit(t, out);
 }
 
 std::optional<map::DoorClass> EdgeAssembler::DoubleDoorClass(double span_in) const {

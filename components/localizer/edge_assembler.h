@@ -83,15 +83,19 @@ struct EdgeAssemblerConfig {
 
 // Assembles per-frame door sightings and the odometer into the sensed sequence of StickRep
 // edges (§6.3, Figure 6.2 steps 3-4): a door edge per tracked door (class by
-// confidence-weighted vote, width by median, the leaf's mark by vote), and between consecutive doors a wall edge
-// whose length is the odometry distance between their facing jambs. The wall the robot
-// started in is only partly seen: its length is a lower bound.
+// confidence-weighted vote, width by median, the leaf's mark by vote), and between consecutive
+// doors a wall edge whose length is the odometry distance between their facing jambs. The wall the
+// robot started in is only partly seen: its length is a lower bound.
 //
 // The detector pairs any two strong vertical edges (Figure 4.1), so one door gives several
 // pairs: the opening, the opening plus a casing, a casing to a leaf window's edge. Each pair
 // is tracked by its two jambs; of tracks that overlap only the best supported is a door.
 // A wall panel between two doors, framed by their casings, is a pair too: a "door" whose
-// jambs touch doors on both sides is that panel and is left out. The two leaves of a double
+// jambs touch doors on both sides is that panel and is left out. Which track of a row is its
+// first door decides that phase for the whole row, so a door that begins one waits for the
+// track after it: of the two, the better supported is the door (a panel seen first, by the
+// casings of the door beside the robot's start, would otherwise make every door of the row
+// a panel and every panel a 40 in door). The two leaves of a double
 // door (the meeting stile is a jamb to the detector; a 72 in door never fits in the view
 // from the hallway axis) are two tracks that share the stile: they become one 30/30 or
 // 36/36 edge by their span, as the map has them (Table 4.1's double-door classes).
@@ -165,6 +169,12 @@ class EdgeAssembler {
   double Far(const Track& t) const { return direction_ >= 0 ? t.hi() : t.lo(); }
   // Decides what the front track (complete) is: false when it is left out.
   bool Decide(Track& t);
+  // Whether a track in view begins within min_wall_in of t's far jamb. One frame is enough:
+  // it says only that something frames t on its far side, as a door's casing frames a panel.
+  bool TouchesOneInView(const Track& t) const;
+  // Decides the front track and emits it, or holds it (held_) while it may be a row's first
+  // wall panel, or settles the held one against it.
+  void Complete(Track t, std::vector<map::SensedEdge>& out);
   // The double door whose two leaves span `span_in` jamb to jamb, if any.
   std::optional<map::DoorClass> DoubleDoorClass(double span_in) const;
   void Emit(const Track& t, std::vector<map::SensedEdge>& out);
@@ -173,6 +183,9 @@ class EdgeAssembler {
 
   EdgeAssemblerConfig config_;
   std::vector<Track> open_;
+  // A complete door that touches the next track in view and follows no door: the first
+  // door of a row, or the row's first wall panel, until the next track is complete.
+  std::optional<Track> held_;
   std::vector<map::SensedEdge> sequence_;
   std::vector<Span> spans_;
   double odometer_in_ = 0.0;

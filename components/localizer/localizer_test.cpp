@@ -398,6 +398,66 @@ TEST(EdgeAssemblerTest, WallPanelFramedByTheCasingsOfTwoDoorsIsNotADoor) {
   EXPECT_EQ(edges[3].code, map::DoorCode(map::DoorClass::k36));
 }
 
+// A row of 36 in doors 46 in apart (Engineering Building wing corridors): doors at 83, 165
+// and 247 in, and between and before them the wall panels the detector pairs casing to
+// casing, 40 in "doors" at 40, 122 and 204 in. `door_frames` and `panel_frames`: in how many
+// frames each is sighted (a door's jambs are paired in more frames than a panel's casings).
+std::vector<map::SensedEdge> DriveARow(EdgeAssembler& a, int door_frames, int panel_frames) {
+  std::vector<map::SensedEdge> edges;
+  for (double odo = 0.0; odo <= 380.0; odo += 6.0) {
+    for (int i = 0; i < 3; ++i) {
+      const double panel = 60.0 + 82.0 * i, door = 101.0 + 82.0 * i;
+      // Sighted in the frames (every 6 in) whose axis is within 3 in times the count of its
+      // centre, the far end left out.
+      const auto sighted = [&](double centre, int frames) {
+        return odo >= centre - 3.0 * frames && odo < centre + 3.0 * frames;
+      };
+      if (sighted(panel, panel_frames)) a.AddSighting({map::DoorClass::k40, 40.0, 0.8, panel});
+      if (sighted(door, door_frames)) a.AddSighting({map::DoorClass::k36, 36.0, 0.8, door});
+    }
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  return edges;
+}
+
+TEST(EdgeAssemblerTest, ARowFirstSeenAtAWallPanelGivesItsDoorsNotItsPanels) {
+  EdgeAssembler a;
+  const std::vector<map::SensedEdge> edges = DriveARow(a, 4, 2);
+  // A partial wall to the first door, then door, wall, door, wall, door: no 40 in "door".
+  ASSERT_EQ(edges.size(), 6u) << map::Describe(edges);
+  EXPECT_EQ(edges[0].code, map::kWallCode);
+  EXPECT_TRUE(edges[0].metric_is_lower_bound);
+  for (int i : {1, 3, 5}) EXPECT_EQ(edges[i].code, map::DoorCode(map::DoorClass::k36)) << i;
+  for (int i : {2, 4}) {
+    EXPECT_EQ(edges[i].code, map::kWallCode) << i;
+    EXPECT_THAT(edges[i].metric_in, DoubleNear(46.0, 1e-9)) << i;
+  }
+}
+
+TEST(EdgeAssemblerTest, ARowsFirstTrackIsKeptWhenTheNextIsNoBetterSupported) {
+  // The same row with doors and panels sighted alike: the first track stands, as a door
+  // seen before the row's first panel does (the support decides only when it differs).
+  EdgeAssembler a;
+  const std::vector<map::SensedEdge> edges = DriveARow(a, 3, 3);
+  ASSERT_GE(edges.size(), 2u) << map::Describe(edges);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k40)) << map::Describe(edges);
+}
+
+TEST(EdgeAssemblerTest, TwoDoorsSideBySideWithNoRowAfterAreBothDoors) {
+  // A 36 in door and a 30 in door a casing apart (Table 6.2's door-door adjacency), a wall
+  // after: the first waits for the second, and both are doors with no wall between.
+  EdgeAssembler a;
+  std::vector<map::SensedEdge> edges;
+  for (double odo = 0.0; odo <= 300.0; odo += 6.0) {
+    if (std::abs(118.0 - odo) < 12.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.8, 118.0});
+    if (std::abs(156.0 - odo) < 9.0) a.AddSighting({map::DoorClass::k30, 30.0, 0.9, 156.0});
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  ASSERT_EQ(edges.size(), 3u) << map::Describe(edges);
+  EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36));
+  EXPECT_EQ(edges[2].code, map::DoorCode(map::DoorClass::k30));
+}
+
 TEST(EdgeAssemblerTest, ReversedTravelRestartsTheSequenceTheOtherWay) {
   EdgeAssembler a;
   auto edges = Drive(a, {{100.0, 36.0, map::DoorClass::k36}}, 200.0);
