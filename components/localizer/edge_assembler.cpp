@@ -189,8 +189,31 @@ void EdgeAssembler::PlaceCorner(double range_after_in, std::vector<map::SensedEd
   last_jamb_in_ = c.odometer_in - sign * direction_ * r1;
 }
 
+EdgeAssembler::Track* EdgeAssembler::NextLeaf(const Track& t, map::DoorClass* door_class) {
+  for (Track& n : open_) {
+    if (std::abs(Near(n) - Far(t)) >= config_.leaf_gap_in ||
+        std::max(t.width(), n.width()) > config_.max_leaf_in ||
+        std::abs(t.width() - n.width()) > config_.leaf_mismatch_in ||
+        t.frames + n.frames < config_.min_frames) {
+      continue;
+    }
+    if (const auto cls = DoubleDoorClass(direction_ * (Far(n) - Near(t)))) {
+      *door_class = *cls;
+      return &n;
+    }
+  }
+  return nullptr;
+}
+
 bool EdgeAssembler::Decide(Track& t) {
-  if (t.frames < config_.min_frames) return false;
+  // A track seen in fewer frames is spurious, unless it is a leaf of a double door with the
+  // other leaf beside it (the second leaf carries the double door by then): two alike leaves
+  // sharing a stile and spanning a double door are seldom chance, and from the hallway axis a
+  // leaf is often paired in one frame only.
+  map::DoorClass double_class{};
+  if (t.frames < config_.min_frames && !t.double_class && !NextLeaf(t, &double_class)) {
+    return false;
+  }
   const auto overlap = [](const Track& a, const Track& b) {
     return std::min(a.hi(), b.hi()) - std::max(a.lo(), b.lo());
   };
@@ -214,19 +237,12 @@ bool EdgeAssembler::Decide(Track& t) {
   if (touches_previous && TouchesOneInView(t)) return false;
   // The first leaf of a double door: the next leaf starts at this one's far jamb (the
   // meeting stile) and is in view already; hand the double door over to it.
-  for (Track& n : open_) {
-    if (n.frames < config_.min_frames || std::abs(Near(n) - Far(t)) >= config_.leaf_gap_in ||
-        std::max(t.width(), n.width()) > config_.max_leaf_in ||
-        std::abs(t.width() - n.width()) > config_.leaf_mismatch_in) {
-      continue;
-    }
-    if (const auto cls = DoubleDoorClass(direction_ * (Far(n) - Near(t)))) {
-      n.double_class = cls;
-      n.double_near_jamb_in = Near(t);
-      // Both leaves carry the door's mark: their reads are one vote.
-      for (int m = 0; m < map::kDoorMarkCount; ++m) n.mark_weight[m] += t.mark_weight[m];
-      return false;
-    }
+  if (Track* n = NextLeaf(t, &double_class)) {
+    n->double_class = double_class;
+    n->double_near_jamb_in = Near(t);
+    // Both leaves carry the door's mark: their reads are one vote.
+    for (int m = 0; m < map::kDoorMarkCount; ++m) n->mark_weight[m] += t.mark_weight[m];
+    return false;
   }
   return true;
 }

@@ -175,6 +175,10 @@ class EdgeAssembler {
   // Decides the front track and emits it, or holds it (held_) while it may be a row's first
   // wall panel, or settles the held one against it.
   void Complete(Track t, std::vector<map::SensedEdge>& out);
+  // The track in view that is t's next leaf: it begins at t's far jamb (the meeting stile),
+  // alike, the two seen in min_frames together and spanning a double door (its class in
+  // `door_class`); null when none is.
+  Track* NextLeaf(const Track& t, map::DoorClass* door_class);
   // The double door whose two leaves span `span_in` jamb to jamb, if any.
   std::optional<map::DoorClass> DoubleDoorClass(double span_in) const;
   void Emit(const Track& t, std::vector<map::SensedEdge>& out);
