@@ -195,16 +195,26 @@ TEST(EdgeAssemblerTest, TwoLeavesSharingTheStileBecomeOneDoubleDoorBySpan) {
   EXPECT_THAT(edges[1].metric_in, DoubleNear(70.0, 1e-9));
 }
 
+// Drives from 0 to 300 in, frames every 6 in; each sighting is made once, in the frame at
+// its odometer reading (a multiple of 6).
+std::vector<map::SensedEdge> DriveOneFrameEach(
+    EdgeAssembler& a, const std::vector<std::pair<double, DoorSighting>>& sightings) {
+  std::vector<map::SensedEdge> edges;
+  for (double odo = 0.0; odo <= 300.0; odo += 6.0) {
+    for (const auto& [at, s] : sightings) {
+      if (at == odo) a.AddSighting(s);
+    }
+    for (const auto& e : a.Advance(odo)) edges.push_back(e);
+  }
+  return edges;
+}
+
 TEST(EdgeAssemblerTest, LeavesSeenInOneFrameEachAreADoubleDoorNotTwoSpuriousTracks) {
   // The same 36/36 (leaves 100..136 and 136..172), each leaf paired in one frame only, as
   // the realistic renders often give a double door seen from the hallway axis.
   EdgeAssembler a;
-  std::vector<map::SensedEdge> edges;
-  for (double odo = 0.0; odo <= 300.0; odo += 6.0) {
-    if (odo == 114.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.6, 118.0});
-    if (odo == 156.0) a.AddSighting({map::DoorClass::k36, 36.0, 0.6, 154.0});
-    for (const auto& e : a.Advance(odo)) edges.push_back(e);
-  }
+  const auto edges = DriveOneFrameEach(a, {{114.0, {map::DoorClass::k36, 36.0, 0.6, 118.0}},
+                                           {156.0, {map::DoorClass::k36, 36.0, 0.6, 154.0}}});
   ASSERT_EQ(edges.size(), 2u) << map::Describe(edges);
   EXPECT_EQ(edges[1].code, map::DoorCode(map::DoorClass::k36_36));
   EXPECT_THAT(edges[1].metric_in, DoubleNear(72.0, 1e-9));
@@ -214,12 +224,8 @@ TEST(EdgeAssemblerTest, TracksSeenOnceEachThatSpanNoDoubleDoorStaySpurious) {
   // Two one-frame tracks, alike and sharing a jamb, but 26 in each: together 52 in, no
   // double door's span. Both are dropped.
   EdgeAssembler a;
-  std::vector<map::SensedEdge> edges;
-  for (double odo = 0.0; odo <= 300.0; odo += 6.0) {
-    if (odo == 114.0) a.AddSighting({map::DoorClass::k30, 26.0, 0.6, 113.0});
-    if (odo == 138.0) a.AddSighting({map::DoorClass::k30, 26.0, 0.6, 139.0});
-    for (const auto& e : a.Advance(odo)) edges.push_back(e);
-  }
+  const auto edges = DriveOneFrameEach(a, {{114.0, {map::DoorClass::k30, 26.0, 0.6, 113.0}},
+                                           {138.0, {map::DoorClass::k30, 26.0, 0.6, 139.0}}});
   EXPECT_TRUE(edges.empty()) << map::Describe(edges);
 }
 
