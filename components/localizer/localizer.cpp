@@ -395,6 +395,7 @@ bool Localizer::ExtendDeterministic(const std::vector<map::SensedEdge>& edges) {
 }
 
 void Localizer::ExtendBayes(const std::vector<map::SensedEdge>& edges) {
+  if (config_.direction_from_travel) bayes_->SetTravelDirection(-assembler_.travel_direction());
   for (const map::SensedEdge& e : edges) bayes_->Add(e);
   recovery_edges_ += static_cast<int>(edges.size());
 }

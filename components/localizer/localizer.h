@@ -78,6 +78,12 @@ struct LocalizerConfig {
   // recovery (a door the held place has by now that did not come): it can give the pose up
   // (RECOVERING; LOST only if the next edges are against it too), never move it.
   bool silence_tests_pose = false;
+  // Bayes: the direction of travel along the rings follows from the odometer's sign. The
+  // camera looks left of the base's heading (+90°, §6.4.2) and the base drives forward or
+  // backward with it on the wall (§6.3); a ring is listed walking with its wall on the right
+  // (maps/README.md), so driving forward walks it against its order. A first edge, and belief
+  // that starts again from the prior, then goes to that direction alone. Off: either.
+  bool direction_from_travel = false;
   // Bayes: the published confidence from the filter's posterior (identity by default).
   ConfidenceCalibration calibration;
 };

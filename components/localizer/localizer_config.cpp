@@ -36,6 +36,7 @@ ObservationSettings LoadObservation(const StrictYaml& c, double keep_threshold) 
   o.bayes_w2_over_missed_doors = c.GetOr<bool>("bayes_w2_over_missed_doors", false);
   o.bayes_first_part_in_noise = c.GetOr<bool>("bayes_first_part_in_noise", false);
   o.bayes_max_missed_doors = c.Get<int>("bayes_max_missed_doors", 0, 4);
+  o.bayes_direction_from_travel = c.GetOr<bool>("bayes_direction_from_travel", false);
   return o;
 }
 
@@ -177,6 +178,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.lost_threshold = o.bayes_lost_threshold;
     config.lost_confirm_edges = settings.bayes_lost_confirm_edges;
     config.silence_tests_pose = settings.bayes_silence_tests_pose;
+    config.direction_from_travel = o.bayes_direction_from_travel;
     config.bayes.settings.max_step_in = settings.view.max_step_in;
   }
   return config;

@@ -37,6 +37,10 @@ struct ObservationSettings {
   // Missed doors one sensed wall may span (recovery::BayesSettings::max_missed_doors;
   // replaces the study's): in a row of doors the pipeline misses several in a row.
   int bayes_max_missed_doors = 2;
+  // The direction of travel along the rings from the odometer's sign
+  // (LocalizerConfig::direction_from_travel). A fact of the robot, but set with the model:
+  // the calibration is fitted with it or without. Optional: off.
+  bool bayes_direction_from_travel = false;
 };
 
 // The observation model for a map whose hallways are narrow: the landmark pipeline reads a

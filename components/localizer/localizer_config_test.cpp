@@ -178,6 +178,18 @@ TEST(LocalizerSettingsTest, TheRestOfAWallPastAFalseDoorRunsOnOnlyWhereTheSettin
       MakeLocalizerConfig(ForMap(settings, plain), plain).bayes.settings.w2_over_missed_doors);
 }
 
+TEST(LocalizerSettingsTest, TheTravelDirectionIsTakenFromTheOdometerOnlyWhereTheSettingsSaySo) {
+  const LocalizerSettings settings = ShippedWithMarkedKey("bayes_direction_from_travel");
+  ASSERT_TRUE(settings.on_marked_maps.has_value());
+  EXPECT_TRUE(settings.on_marked_maps->bayes_direction_from_travel);
+  const map::Map marked = HallWithDoor("old_window"), plain = HallWithDoor("");
+  EXPECT_TRUE(MakeLocalizerConfig(ForMap(settings, marked), marked).direction_from_travel);
+  EXPECT_EQ(MakeLocalizerConfig(ForMap(settings, plain), plain).direction_from_travel,
+            settings.observation.bayes_direction_from_travel);
+  // Absent, it is off.
+  EXPECT_FALSE(ObservationSettings{}.bayes_direction_from_travel);
+}
+
 TEST(LocalizerSettingsTest, AShortFirstPartPastMissedDoorsIsWeighedOnlyWhereTheSettingsSaySo) {
   const LocalizerSettings settings = ShippedWithMarkedKey("bayes_first_part_in_noise");
   ASSERT_TRUE(settings.on_marked_maps.has_value());

@@ -24,9 +24,11 @@ map::Map MakeMap(const std::vector<map::Edge>& edges) { return StraightRingMap(e
 // Drives along the straightened ring from `start_in` in steps of 6.24 in (one frame per
 // 0.2 s at 2.6 ft/s), sighting every door whose centre is within `view_in` of the optical
 // axis, and feeds the localizer. Returns the odometer when it first reports LOCALIZED, or
-// a negative value.
+// a negative value. The odometer runs with `dir` (ring order forward) unless `odometer_sign`
+// says which way the base drives (+1 forward, -1 backward) whichever way along the ring.
 double DriveUntilLocalized(const map::Map& map, Localizer& loc, double start_in, int dir,
-                           double max_travel_in, double view_in = 14.0) {
+                           double max_travel_in, double view_in = 14.0, int odometer_sign = 0) {
+  const int odo = odometer_sign != 0 ? odometer_sign : dir;
   const map::Ring& ring = map.ring(0);
   double length = 0.0;
   std::vector<double> centre;
@@ -42,11 +44,11 @@ double DriveUntilLocalized(const map::Map& map, Localizer& loc, double start_in,
         const double offset = centre[i] + lap - axis;  // along the ring order
         if (std::abs(offset) <= view_in) {
           loc.AddSighting({*ring.edges[i].door_class, ring.edges[i].metric_in, 0.9,
-                           dir * travel + offset});
+                           odo * (travel + dir * offset)});
         }
       }
     }
-    loc.Advance(dir * travel);
+    loc.Advance(odo * travel);
     if (loc.estimate().status == Status::kLocalized) return travel;
   }
   return -1.0;
@@ -573,6 +575,29 @@ TEST(LocalizerTest, BayesMethodRecoversTheTruePoseFromExactSightings) {
   const Hypothesis& h = loc.estimate().hypotheses.front();
   EXPECT_EQ(h.dir, +1);
   EXPECT_GE(loc.estimate().confidence, config.bayes.settings.threshold);
+}
+
+// The camera looks left and a ring is listed with its wall on the right: a base driving
+// forward walks the ring against its order. Told so, the filter weighs that direction alone.
+TEST(LocalizerTest, TheTravelDirectionFollowsFromTheOdometersSignWhenTheSettingsSaySo) {
+  const map::Map map = MakeMap(DistinctHall());
+  LocalizerConfig config;
+  config.method = MatchMethod::kBayes;
+  config.bayes.confusion =
+      recovery::Resolve(recovery::LoadErrorModel(std::string(STICKREP_SOURCE_DIR) +
+                                                 "/configs/error_model_paper.yaml"),
+                        map::MatchIndex(map));
+  config.direction_from_travel = true;
+  // Against the ring order, driving forward: found, against the ring order.
+  Localizer forward(map, config);
+  ASSERT_GT(DriveUntilLocalized(map, forward, 900.0, -1, 6000.0, 14.0, +1), 0.0);
+  EXPECT_EQ(forward.estimate().hypotheses.front().dir, -1);
+  // The same path driven backward: the filter holds the ring order alone, so it never names
+  // the true direction.
+  Localizer backward(map, config);
+  DriveUntilLocalized(map, backward, 900.0, -1, 6000.0, 14.0, -1);
+  ASSERT_FALSE(backward.estimate().hypotheses.empty());
+  for (const Hypothesis& h : backward.estimate().hypotheses) EXPECT_EQ(h.dir, +1);
 }
 
 TEST(LocalizerTest, PoseIsMaintainedEdgeByEdgeAfterLocalization) {

@@ -317,6 +317,7 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
       }
     }
     for (const int dir : {+1, -1}) {
+      if (prior_dir_ != 0 && dir != prior_dir_) continue;
       const int s = State(g, dir);
       const ChainedPrior& ch = chained[dir > 0 ? 0 : 1];
       n_[s] += weight * (ch.end + pn + eps * unit * prior);

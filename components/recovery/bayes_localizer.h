@@ -103,6 +103,11 @@ class BayesLocalizer {
   // (BayesSettings::kidnap_per_edge): a localizer turns it on while it holds a pose and off
   // while it recovers one (a share held back caps the posterior below 1 - share).
   void SetKidnapShare(double share) { model_.settings.kidnap_per_edge = share; }
+  // The direction along the rings the robot travels in, when it knows it (+1: ring order,
+  // -1: against it, 0: either). Belief that starts from the prior (the first edge, a
+  // corridor's open end, the kidnap share) goes to that direction alone; belief already held
+  // keeps its direction (Reverse turns it).
+  void SetTravelDirection(int ring_dir) { prior_dir_ = ring_dir > 0 ? +1 : ring_dir < 0 ? -1 : 0; }
 
  private:
   static int State(int g, int dir) { return 2 * g + (dir > 0 ? 0 : 1); }
@@ -257,6 +262,7 @@ class BayesLocalizer {
   std::vector<double> silence_;  // SilenceWeight of each state's N phase; empty: none
   double silence_norm_ = 1.0;
   bool skip_partial_ = false;  // after Reverse(): the re-seen partial edge is not evidence
+  int prior_dir_ = 0;          // SetTravelDirection
   // Belief that left the map's rings through an open end with the last sensed wall: it
   // starts again from the prior at the next edge.
   double outside_ = 0.0;

@@ -956,6 +956,61 @@ TEST_F(BayesLocalizerTest, AKidnapShareLetsTheBeliefMoveToWhereTheRobotWasCarrie
   EXPECT_LT(held.PoseProbability(5, +1), carried.PoseProbability(5, +1));
 }
 
+// "D36 W60 D36" (edges 1-3) reads the same either way along the ring: travelled forward it
+// ends at edge 3, backward at edge 1. Knowing the direction of travel settles it.
+TEST_F(BayesLocalizerTest, AKnownTravelDirectionSettlesAStretchThatReadsTheSameEitherWay) {
+  const auto run = [this](int ring_dir) {
+    BayesLocalizer b = Make(ErrorModel::Paper());
+    b.SetTravelDirection(ring_dir);
+    for (const map::SensedEdge& e : {Door(DoorClass::k36), Wall(60), Door(DoorClass::k36)}) {
+      b.Add(e);
+    }
+    return b;
+  };
+  const BayesLocalizer either = run(0);
+  EXPECT_NEAR(either.PoseProbability(3, +1), either.PoseProbability(1, -1), 0.05);
+  EXPECT_LT(either.best().probability, 0.6);
+  for (const int dir : {+1, -1}) {
+    const BayesLocalizer known = run(dir);
+    EXPECT_EQ(known.best().dir, dir);
+    EXPECT_EQ(known.best().edge, dir > 0 ? 3 : 1);
+    EXPECT_GT(known.best().probability, 0.9);
+    double other = 0.0, total = 0.0;
+    for (int g = 0; g < index_.EdgeCount(); ++g) {
+      other += known.PoseProbability(g, -dir);
+      total += known.PoseProbability(g, +1) + known.PoseProbability(g, -1);
+    }
+    EXPECT_EQ(other, 0.0);
+    EXPECT_NEAR(total, 1.0, 1e-9);
+  }
+}
+
+// A reversal turns the belief held; the prior a kidnap share draws from after it goes to the
+// new direction alone.
+TEST_F(BayesLocalizerTest, AfterAReversalThePriorGoesToTheNewDirection) {
+  BayesModel m;
+  m.confusion = Resolve(ErrorModel::Paper(), index_);
+  m.settings.threshold = 0.99;
+  m.settings.kidnap_per_edge = 0.01;
+  BayesLocalizer b(index_, m);
+  b.SetTravelDirection(+1);
+  for (const map::SensedEdge& e :
+       {Wall(150, kNaN, true), Door(DoorClass::k40), Wall(90), Door(DoorClass::k36), Wall(75)}) {
+    b.Add(e);
+  }
+  ASSERT_EQ(b.best().edge, 10);
+  b.Reverse();
+  b.SetTravelDirection(-1);
+  b.Add(Wall(30, kNaN, true));
+  b.Add(Wall(75));
+  b.Add(Door(DoorClass::k36));
+  double forward = 0.0;
+  for (int g = 0; g < index_.EdgeCount(); ++g) forward += b.PoseProbability(g, +1);
+  EXPECT_EQ(forward, 0.0);
+  EXPECT_EQ(b.best().edge, 9);
+  EXPECT_EQ(b.best().dir, -1);
+}
+
 TEST_F(BayesLocalizerTest, InvalidEdgesAreRejected) {
   BayesLocalizer b = Make(ErrorModel::Paper());
   map::SensedEdge e = Door(DoorClass::k36);
