@@ -26,8 +26,11 @@ constexpr int kDomainId = 24;
 // The stretch walked: from 20 in into wall edge 4 of wing3_corridor, forward through 30
 // edges (walls and doors in turn, so that every wall is sensed as one; the 30/30 door of edge
 // 13 and the 36/36 of edge 15 are what single the place out), to 36 in into the wall after
-// the last door. Every door is read with the mark the map gives it. The map's doors carry
-// surveyed marks, so the localizer declares a pose at the marked model's bar (the posterior
+// the last door, the base driving backward: the camera looks left and a ring is listed with
+// its wall on the right, so the base walks a ring in its order only backward (the localizer
+// takes the direction from the odometer's sign, configs/localizer.yaml
+// bayes_direction_from_travel). Every door is read with the mark the map gives it. The map's doors
+// carry surveyed marks, so the localizer declares a pose at the marked model's bar (the posterior
 // 0.999988, configs/localizer.yaml on_marked_maps); the 30 edges bring the right place over
 // it.
 constexpr char kRingId[] = "wing3_corridor";
@@ -74,18 +77,18 @@ msgs::DoorClass ToMsg(map::DoorClass c) {
 struct Leaf {
   map::DoorClass door_class = map::DoorClass::k36;
   double width_in = 0.0;
-  double centre_in = 0.0;  // along the wall, in odometer coordinates
+  double centre_in = 0.0;  // along the wall from the start, in ring order
   map::DoorMark mark = map::DoorMark::kUnknown;
 };
 
 // What the landmark and locomotion processes publish while the robot drives the stretch.
 struct Drive {
   std::vector<Leaf> leaves;
-  double end_odometer_in = 0.0;
+  double end_in = 0.0;  // along the wall from the start
   int truth_edge = 0;  // the edge the robot ends in
 };
 
-// Lays the stretch out along the odometer (zero where the robot starts). Fails the test if
+// Lays the stretch out along the wall (zero where the robot starts). Fails the test if
 // the stretch is not walls and doors in turn.
 Drive LayOut(const map::Ring& ring) {
   Drive drive;
@@ -114,7 +117,7 @@ Drive LayOut(const map::Ring& ring) {
   const map::Edge& after = ring.edges[drive.truth_edge];
   EXPECT_TRUE(after.IsWall() && after.metric_in > kPastLastDoorIn)
       << "the stretch must end in a wall longer than " << kPastLastDoorIn << " in";
-  drive.end_odometer_in = last_door_end_in + kPastLastDoorIn;
+  drive.end_in = last_door_end_in + kPastLastDoorIn;
   return drive;
 }
 
@@ -153,7 +156,7 @@ class LocalizerProcessTest : public ProcessFixture {
     msgs::Odometry o;
     o.distance_in(odometer_in);
     o.pose().x_in(odometer_in);
-    o.linear_speed_ftps(kFrameStepIn / 12.0 / 0.2);
+    o.linear_speed_ftps(-kFrameStepIn / 12.0 / 0.2);
     odometry_.Publish(o, runtime::WallClockNowNs());
   }
 
@@ -196,23 +199,24 @@ TEST_F(LocalizerProcessTest, ReachesLocalizedOnTheTrueEdgeFromTheDoorsOfAStretch
   ASSERT_FALSE(::testing::Test::HasFailure());
   StartLocalizer();
 
-  // One frame per tick: the doors in view, then the odometer of that instant.
+  // One frame per tick: the doors in view, then the odometer of that instant. Driving
+  // backward, the odometer runs down as the robot goes along the wall.
   int frame = 0;
   bool driving = true;
   executor().AddTimer(kSendPeriodS, [&] {
     if (!driving) return;
-    const double odometer_in = frame++ * kFrameStepIn;
-    if (odometer_in > drive.end_odometer_in) {
+    const double along_in = frame++ * kFrameStepIn;
+    if (along_in > drive.end_in) {
       driving = false;
       return;
     }
     for (const Leaf& leaf : drive.leaves) {
-      if (std::abs(leaf.centre_in - odometer_in) <= kInViewIn) {
-        PublishLandmark(ToMsg(leaf.door_class), leaf.width_in, odometer_in, leaf.centre_in,
+      if (std::abs(leaf.centre_in - along_in) <= kInViewIn) {
+        PublishLandmark(ToMsg(leaf.door_class), leaf.width_in, -along_in, -leaf.centre_in,
                         leaf.mark);
       }
     }
-    PublishOdometry(odometer_in);
+    PublishOdometry(-along_in);
   });
 
   // Once the last door is behind the robot the pose must be the true one: one candidate, on
