@@ -29,10 +29,10 @@ constexpr int kDomainId = 24;
 // the last door, the base driving backward: the camera looks left and a ring is listed with
 // its wall on the right, so the base walks a ring in its order only backward (the localizer
 // takes the direction from the odometer's sign, configs/localizer.yaml
-// bayes_direction_from_travel). Every door is read with the mark the map gives it. The map's doors
-// carry surveyed marks, so the localizer declares a pose at the marked model's bar (the posterior
-// 0.999988, configs/localizer.yaml on_marked_maps); the 30 edges bring the right place over
-// it.
+// bayes_direction_from_travel). Every door is read with the mark the map gives it. The map's
+// doors carry surveyed marks, so the localizer declares a pose at the marked model's bar (the
+// posterior 0.999985, configs/localizer.yaml on_marked_maps); the 30 edges bring the right
+// place over it.
 constexpr char kRingId[] = "wing3_corridor";
 constexpr int kStartEdge = 4;
 constexpr double kStartOffsetIn = 20.0;
