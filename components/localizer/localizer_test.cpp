@@ -563,13 +563,19 @@ TEST(LocalizerTest, ExactSightingsBackwardRecoverTheReverseDirection) {
   EXPECT_EQ(loc.estimate().hypotheses.front().dir, -1);
 }
 
-TEST(LocalizerTest, BayesMethodRecoversTheTruePoseFromExactSightings) {
-  const map::Map map = MakeMap(DistinctHall());
+// The Bayes localizer with the paper's error model (Table 6.10) for `map`.
+LocalizerConfig PaperBayesConfig(const map::Map& map) {
   LocalizerConfig config;
   config.method = MatchMethod::kBayes;
   config.bayes.confusion = recovery::Resolve(
       recovery::LoadErrorModel(std::string(STICKREP_SOURCE_DIR) + "/configs/error_model_paper.yaml"),
       map::MatchIndex(map));
+  return config;
+}
+
+TEST(LocalizerTest, BayesMethodRecoversTheTruePoseFromExactSightings) {
+  const map::Map map = MakeMap(DistinctHall());
+  const LocalizerConfig config = PaperBayesConfig(map);
   Localizer loc(map, config);
   ASSERT_GT(DriveUntilLocalized(map, loc, 10.0, +1, 6000.0), 0.0);
   const Hypothesis& h = loc.estimate().hypotheses.front();
@@ -581,12 +587,7 @@ TEST(LocalizerTest, BayesMethodRecoversTheTruePoseFromExactSightings) {
 // forward walks the ring against its order. Told so, the filter weighs that direction alone.
 TEST(LocalizerTest, TheTravelDirectionFollowsFromTheOdometersSignWhenTheSettingsSaySo) {
   const map::Map map = MakeMap(DistinctHall());
-  LocalizerConfig config;
-  config.method = MatchMethod::kBayes;
-  config.bayes.confusion =
-      recovery::Resolve(recovery::LoadErrorModel(std::string(STICKREP_SOURCE_DIR) +
-                                                 "/configs/error_model_paper.yaml"),
-                        map::MatchIndex(map));
+  LocalizerConfig config = PaperBayesConfig(map);
   config.direction_from_travel = true;
   // Against the ring order, driving forward: found, against the ring order.
   Localizer forward(map, config);
@@ -660,11 +661,7 @@ TEST(LocalizerTest, KidnappedWhileTravellingBackIsStillNoticed) {
 // per edge, the hold and LOST thresholds.
 LocalizerConfig HoldingBayesConfig(const map::Map& map, double lost_threshold,
                                    int lost_confirm_edges = 0) {
-  LocalizerConfig config;
-  config.method = MatchMethod::kBayes;
-  config.bayes.confusion = recovery::Resolve(
-      recovery::LoadErrorModel(std::string(STICKREP_SOURCE_DIR) + "/configs/error_model_paper.yaml"),
-      map::MatchIndex(map));
+  LocalizerConfig config = PaperBayesConfig(map);
   config.bayes.settings.kidnap_per_edge = 0.01;
   config.keep_threshold = 0.9;
   config.lost_threshold = lost_threshold;
