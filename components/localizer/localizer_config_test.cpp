@@ -216,22 +216,26 @@ TEST(LocalizerSettingsTest, TheShippedFloorsGetTheModelTheirSurveySupports) {
   EXPECT_EQ(MapHallwayWidthIn(teaching, 120.0), 96.0);
   EXPECT_EQ(MapHallwayWidthIn(science, 120.0), 88.0);
 
-  // As shipped, no model for narrow hallways: the teaching building gets the default, and
-  // the science hall its own calibration of the default model, at the same stated risk.
+  // As shipped, no model for narrow hallways: the teaching building and the science hall
+  // each get their own calibration of the default model at the same stated risk, the
+  // teaching building's fitted with the direction of travel.
   const LocalizerSettings shipped = Load(Shipped());
   EXPECT_FALSE(shipped.on_narrow_maps.has_value());
   EXPECT_EQ(ForMap(shipped, engineering).observation_for, ObservationFor::kMarkedMap);
-  EXPECT_EQ(ForMap(shipped, teaching).observation_for, ObservationFor::kDefault);
-  const LocalizerSettings on_science = ForMap(shipped, science);
-  EXPECT_EQ(on_science.observation_for, ObservationFor::kOwnMap);
-  EXPECT_EQ(on_science.observation.error_model_file, shipped.observation.error_model_file);
-  EXPECT_EQ(on_science.observation.localized_confidence, shipped.observation.localized_confidence);
-  EXPECT_GT(on_science.observation.bayes_threshold, shipped.observation.bayes_threshold);
-  // With one, the teaching building gets it; the science hall and the marked floor keep
-  // their own, and a floor of the text's 120 in hallways the default.
+  for (const map::Map* floor : {&teaching, &science}) {
+    const LocalizerSettings own = ForMap(shipped, *floor);
+    EXPECT_EQ(own.observation_for, ObservationFor::kOwnMap) << floor->info().name;
+    EXPECT_EQ(own.observation.error_model_file, shipped.observation.error_model_file);
+    EXPECT_EQ(own.observation.localized_confidence, shipped.observation.localized_confidence);
+    EXPECT_GT(own.observation.bayes_threshold, shipped.observation.bayes_threshold);
+  }
+  EXPECT_TRUE(ForMap(shipped, teaching).observation.bayes_direction_from_travel);
+  EXPECT_FALSE(ForMap(shipped, science).observation.bayes_direction_from_travel);
+  // With one, the floors with settings of their own and the marked floor keep theirs, and a
+  // floor of the text's 120 in hallways gets the default.
   const LocalizerSettings narrow = Load(WithNarrowBlock(Shipped()));
   EXPECT_EQ(ForMap(narrow, engineering).observation_for, ObservationFor::kMarkedMap);
-  EXPECT_EQ(ForMap(narrow, teaching).observation_for, ObservationFor::kNarrowMap);
+  EXPECT_EQ(ForMap(narrow, teaching).observation_for, ObservationFor::kOwnMap);
   EXPECT_EQ(ForMap(narrow, science).observation_for, ObservationFor::kOwnMap);
   EXPECT_EQ(ForMap(narrow, map::LoadMap(maps + "storefront.yaml")).observation_for,
             ObservationFor::kDefault);
