@@ -411,6 +411,12 @@ class RealBuildingTest : public WhereAmITest {
   // How far ahead of the pose held each goal is: a few edges, so the route keeps the
   // direction of travel.
   static constexpr int kGoalAheadEdges = 6;
+  // Real seconds allowed for a pose to be declared. Deployed, the teaching building's seed 12
+  // took 89.6 s under the Engineering Building's calibration and 161 s and 413 s under the
+  // floor's own with the direction of travel (a bar of the posterior 0.9992, not 0.9949),
+  // where in process it takes 50.7 s either way: the deployed reads are not the in-process
+  // ones, and a higher bar waits longer for reads that agree.
+  static constexpr double kPoseTimeoutS = 900.0;
 
   void RecoversTheTruePose(const std::string& map_name, const std::string& ring,
                            const std::string& seed, int ring_edges) {
@@ -455,19 +461,19 @@ class RealBuildingTest : public WhereAmITest {
                     {"map_file", STICKREP_SOURCE_DIR "/maps/" + map_name + ".yaml"}}));
     StartStackOn(system, map_name,
                  {{"seed", seed}, {"ring_id", ring}, {"real_time_factor", "1"}});
-    ASSERT_TRUE(SpinUntil([&] { return first.has_value(); }, 600.0)) << Outputs();
+    ASSERT_TRUE(SpinUntil([&] { return first.has_value(); }, kPoseTimeoutS)) << Outputs();
     if (spell.open) {
       std::printf("[real building] the first pose is wrong (%s): sending the robot on\n",
                   Named(*first, *at_first).c_str());
       std::fflush(stdout);
       ASSERT_TRUE(TravelOnUntil([&] { return spell.done; }, goals, latest, last_status, ring_edges,
-                                kGoalAheadEdges, 600.0))
+                                kGoalAheadEdges, kPoseTimeoutS))
           << "the wrong pose was never given up; " << last_status << "\n"
           << Outputs();
       std::printf("[real building] the wrong pose ended (%s) after %ld edges, %.1f ft\n",
                   spell.ended_by.c_str(), spell.edges, spell.feet);
       EXPECT_LE(spell.edges, kWrongSpellEdges) << Outputs();
-      ASSERT_TRUE(SpinUntil([&] { return again.has_value(); }, 600.0)) << Outputs();
+      ASSERT_TRUE(SpinUntil([&] { return again.has_value(); }, kPoseTimeoutS)) << Outputs();
       EXPECT_TRUE(Matches(again->best(), *at_again, at_again->forward_in_ring(), ring_edges))
           << "after the wrong pose, " << Named(*again, *at_again) << "\n"
           << Outputs();
