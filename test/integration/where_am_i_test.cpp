@@ -394,11 +394,11 @@ TEST_F(KidnapBatchTest, DeployedKidnapsAreGivenUpAndRecovered) {
 // the in-process one (frame and scan timing, discovery) and may take another route: teaching
 // seed 28, 33 edges in process, ended 2 edges off in one CI run; seed 20 once went on for 36
 // edges and declared edge 91 for 96. A declared pose on these floors carries a stated risk
-// (in process, seeds 1-100: 6 of 89 declared poses wrong on the teaching building's main
-// corridor, 3 of 67 on the science hall; docs/whereami.md), so what is asserted is the promise that
-// goes with it: the first pose names the true place, or the robot, sent on ahead, gives the wrong
-// pose up within kWrongSpellEdges edges of the map and the next pose it declares names the true
-// place.
+// (in process, seeds 1-100: 3 of 88 declared poses wrong on the teaching building's main
+// corridor, 4 of 78 on its science wing, 3 of 88 on the science hall; docs/whereami.md), so
+// what is asserted is the promise that goes with it: the first pose names the true place, or the
+// robot, sent on ahead, gives the wrong pose up within kWrongSpellEdges edges of the map and the
+// next pose it declares names the true place.
 class RealBuildingTest : public WhereAmITest {
  protected:
   explicit RealBuildingTest(int domain) : WhereAmITest(domain) {}
