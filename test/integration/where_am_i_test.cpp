@@ -502,11 +502,11 @@ TEST_F(TeachingBuildingTest, StartRecoversTheTruePose) {
   // 50.7 s (with the floor's own calibration and the direction of travel as before it), one
   // hallway end and no turn on the way, in the realistic hallways the virtual robot draws
   // (configs/virtual_robot.yaml, realism on); chosen on an earlier build as the quickest
-  // corridor start of seeds 1-40 there. Seed 20, used before, now takes 27 edges and 286 ft in
-  // process (and 36 edges once deployed); seed 54 starts in the entrance lobby, which the ring does
-  // not model as a hall (maps/README.md), and deployed it once took the lobby's junction the other
-  // way and was sure (0.9992) of the right edge in the wrong direction (docs/whereami.md). The ring
-  // has 98 edges.
+  // corridor start of seeds 1-40 there. Seed 20, used before, took 27 edges and 286 ft in
+  // process on that build (and 36 edges once deployed); seed 54 starts in the entrance lobby, which
+  // the ring does not model as a hall (maps/README.md), and deployed it once took the lobby's
+  // junction the other way and was sure (0.9992) of the right edge in the wrong direction
+  // (docs/whereami.md). The ring has 98 edges.
   RecoversTheTruePose("teaching_building_1f", "main_corridor", "12", 98);
 }
 
