@@ -520,9 +520,10 @@ class ScienceHallTest : public RealBuildingTest {
 
 TEST_F(ScienceHallTest, StartRecoversTheTruePose) {
   // Seed 34: correct in process after 6 edges, 64.1 ft, 54.7 s (realism on), with the
-  // floor's own calibration and the direction of travel as before it (configs/localizer.yaml,
-  // on_maps) and riding 10 in off the axis for the camera (configs/locomotion.yaml, on_maps). Seed 46, used on the axis, takes 22
-  // edges and 330 ft on the line. The ring has 136 edges.
+  // floor's own calibration and the direction of travel, the same as without the direction
+  // (configs/localizer.yaml, on_maps), riding 10 in off the axis for the camera
+  // (configs/locomotion.yaml, on_maps). Seed 46, used on the axis, takes 22 edges and 330 ft
+  // on the line. The ring has 136 edges.
   RecoversTheTruePose("science_hall_2f", "labs_corridor", "34", 136);
 }
 
