@@ -45,6 +45,9 @@ int main(int argc, char** argv) {
                "belief changes, and where the base touched a wall");
   app.add_option("--path-png", o.path_png,
                  "Draw each run's true path over the map into PREFIX_seed<N>.png");
+  app.add_option("--fit-calibration", o.fit_calibration,
+                 "Instead of runs: pool the published confidences of these --json batches (run "
+                 "under one calibration) into one Platt fit, and print the calibration it makes");
   if (const std::optional<int> rc = stickrep::ParseCommandLine(app, argc, argv)) return *rc;
   return stickrep::whereami::RunTool(o, std::cout, std::cerr);
 }

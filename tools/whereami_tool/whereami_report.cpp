@@ -17,6 +17,7 @@
 #include "plot/map_render.h"
 #include "stickrep/hallway_view.h"
 #include "study_tool/study_report.h"
+#include "whereami_tool/calibration_fit.h"
 #include "whereami_tool/integrity_report.h"
 #include "whereami_tool/wall_residuals.h"
 
@@ -415,6 +416,11 @@ nlohmann::json RunJson(const RunResult& r) {
     if (g.belief_on) j["belief_on"] = *g.belief_on;
     given_up.push_back(std::move(j));
   }
+  nlohmann::json confidences = nlohmann::json::array();
+  for (const ConfidenceSample& c : r.confidences) {
+    confidences.push_back(
+        {{"confidence", c.confidence}, {"correct", c.correct}, {"localized", c.localized}});
+  }
   return {
       {"seed", r.seed},
       {"start", r.start},
@@ -445,7 +451,8 @@ nlohmann::json RunJson(const RunResult& r) {
       {"ending", ToString(r.ending())},
       {"sensed", r.sensed_trace},
       {"drops", r.drops},
-      {"start_redraws", r.start_redraws}};
+      {"start_redraws", r.start_redraws},
+      {"confidences", confidences}};
 }
 
 // The runs added up, beside the paper's Table 6.22 where it has the map.
@@ -486,7 +493,13 @@ void WriteRunsJson(const std::string& path, const RunSetup& setup, const ToolOpt
                    const nlohmann::json& runs, const Summary& s, const nlohmann::json& more) {
   std::ofstream f(path);
   if (!f) throw InputError(path, 0, "--json", "cannot be written");
+  const localizer::ObservationSettings& model =
+      localizer::ForMap(setup.localizer, *setup.map).observation;
   nlohmann::json j{{"map", setup.map->info().name},
+                   {"calibration",
+                    {{"slope", model.calibration.slope},
+                     {"offset", model.calibration.offset},
+                     {"localized_confidence", model.localized_confidence}}},
                    {"first_seed", options.first_seed},
                    {"runs", runs},
                    {"correct", s.correct},
@@ -502,6 +515,10 @@ void WriteRunsJson(const std::string& path, const RunSetup& setup, const ToolOpt
 
 int RunTool(const ToolOptions& options, std::ostream& out, std::ostream& err) {
   try {
+    if (!options.fit_calibration.empty()) {
+      PrintPooledCalibrationFit(FitCalibrationFromBatches(options.fit_calibration), out);
+      return 0;
+    }
     const RunSetup setup = LoadCheckedSetup(options);
     if (options.measure_ft > 0.0) return Measure(setup, options, out);
     PrintRunsHeader(setup, options, out);

@@ -36,6 +36,9 @@ struct ToolOptions {
   // localizing (0: Where-am-I runs), and where to write them as an error model.
   double measure_ft = 0.0;
   std::string error_model_out;
+  // Instead of runs: the batches' --json files pooled into one calibration
+  // (calibration_fit.h).
+  std::vector<std::string> fit_calibration;
 };
 
 // What the runs add up to.
