@@ -38,15 +38,19 @@ std::vector<ConfidenceSample> SamplesOf(const nlohmann::json& batch, const std::
     for (const nlohmann::json& c : *it) {
       const auto confidence = c.find("confidence");
       const auto correct = c.find("correct");
-      if (confidence == c.end() || !confidence->is_number() || correct == c.end() ||
-          !correct->is_boolean() || !(*confidence >= 0.0 && *confidence <= 1.0)) {
+      const auto localized = c.find("localized");
+      if (!c.is_object() || confidence == c.end() || !confidence->is_number() ||
+          correct == c.end() || !correct->is_boolean() ||
+          (localized != c.end() && !localized->is_boolean()) ||
+          !(*confidence >= 0.0 && *confidence <= 1.0)) {
         throw InputError(file, 0, key,
-                         "each sample needs a confidence in [0, 1] and a true/false correct");
+                         "each sample needs a confidence in [0, 1], a true/false correct and "
+                         "at most a true/false localized");
       }
       ConfidenceSample s;
       s.confidence = confidence->get<double>();
       s.correct = correct->get<bool>();
-      s.localized = c.value("localized", false);
+      s.localized = localized != c.end() && localized->get<bool>();
       samples.push_back(s);
     }
   }

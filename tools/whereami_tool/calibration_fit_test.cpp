@@ -118,6 +118,21 @@ TEST(CalibrationFitTest, AFileWithoutSamplesNamesTheKey) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "runs[0].confidences");
   }
+  // A sample of the wrong type is refused by key, not thrown as the JSON library's error.
+  for (const char* sample :
+       {R"({"confidence": 1.5, "correct": true})", R"({"confidence": 0.5, "correct": 1})",
+        R"({"confidence": 0.5, "correct": true, "localized": "yes"})", R"([0.5, true])"}) {
+    const std::string wrong = ::testing::TempDir() + "wrong_sample.json";
+    std::ofstream(wrong) << R"({"map": "m", "calibration": {"slope": 1, "offset": 0,
+        "localized_confidence": 0.955}, "runs": [{"confidences": [)"
+                         << sample << "]}]}";
+    try {
+      FitCalibrationFromBatches({wrong});
+      ADD_FAILURE() << "pooled " << sample;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "runs[0].confidences") << sample;
+    }
+  }
   const std::string bad = ::testing::TempDir() + "not_json.json";
   std::ofstream(bad) << "{ not json";
   EXPECT_THROW(FitCalibrationFromBatches({bad}), InputError);
