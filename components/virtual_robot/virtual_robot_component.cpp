@@ -102,8 +102,10 @@ void VirtualRobotComponent::Record(const SimTruth& t) {
   if (std::hypot(t.X_WR.x_in - last.first, t.X_WR.y_in - last.second) > kPathSpacingIn) {
     path_.push_back({t.X_WR.x_in, t.X_WR.y_in});
   }
-  if (t.corner_distance_in > kEnvelopeCornerDistanceIn &&
-      t.distance_in > kEnvelopeSettleDistanceIn) {
+  const bool settled = t.distance_in > kEnvelopeSettleDistanceIn;
+  if (settled && !t.in_ring_hallway) off_ring_in_ += t.distance_in - recorded_distance_in_;
+  recorded_distance_in_ = t.distance_in;
+  if (settled && t.in_ring_hallway && t.corner_distance_in > kEnvelopeCornerDistanceIn) {
     max_offset_in_ = std::max(max_offset_in_, std::abs(t.lateral_offset_in));
     max_heading_deg_ = std::max(max_heading_deg_, std::abs(RadToDeg(t.heading_error_rad)));
   }
@@ -222,13 +224,14 @@ std::string VirtualRobotComponent::Summary() const {
   const double sim_s = ElapsedS();
   return fmt::format(
       "start {}; {} frames ({:.0f} due), {} sonar scans served; {:.1f} s simulated at {:g}x real "
-      "time, longest step {:.0f} ms (nominal {:.0f}); travelled {:.1f} in, now on edge {} of ring '{}'; {} "
+      "time, longest step {:.0f} ms (nominal {:.0f}); travelled {:.1f} in, now on edge {} of ring "
+      "'{}'; {} "
       "collisions; after 20 ft, beyond 8 ft of corners: max |offset| {:.1f} in, max |heading "
-      "error| {:.1f} deg{}",
+      "error| {:.1f} deg ({:.1f} ft outside the ring's hallway, not judged){}",
       start_, frames_, sim_s * config_.camera_rate_hz, scans_, sim_s, config_.real_time_factor,
-      max_step_s_ * 1e3,
-      1e3 / config_.sim_rate_hz, t.distance_in, t.edge_index, sim_->ring_id(), t.collisions,
-      max_offset_in_, max_heading_deg_, checks.empty() ? "; no pose recovered" : checks);
+      max_step_s_ * 1e3, 1e3 / config_.sim_rate_hz, t.distance_in, t.edge_index, sim_->ring_id(),
+      t.collisions, max_offset_in_, max_heading_deg_, off_ring_ft(),
+      checks.empty() ? "; no pose recovered" : checks);
 }
 
 }  // namespace stickrep::virtual_robot

@@ -72,10 +72,13 @@ class VirtualRobotComponent : public component::Component {
   };
   const std::vector<Marker>& markers() const { return markers_; }
   int frames() const { return frames_; }
-  // On straight runs (beyond 8 ft of a corner, after 20 ft), the largest offset from the
-  // hallway axis and heading error (§6.4.2's envelope).
+  // On straight runs of the start ring's hallway (beyond 8 ft of a corner, after 20 ft), the
+  // largest offset from the hallway axis and heading error (§6.4.2's envelope); and how far
+  // the base travelled outside that hallway after 20 ft (another corridor of the floor, a
+  // hall), where the envelope is not judged.
   double max_offset_in() const { return max_offset_in_; }
   double max_heading_deg() const { return max_heading_deg_; }
+  double off_ring_ft() const { return off_ring_in_ / 12.0; }
   // Simulated seconds since activation.
   double ElapsedS() const;
 
@@ -101,6 +104,7 @@ class VirtualRobotComponent : public component::Component {
   bool moving_ = false;
   int frames_ = 0, scans_ = 0, collisions_ = 0;
   double max_offset_in_ = 0.0, max_heading_deg_ = 0.0;
+  double off_ring_in_ = 0.0, recorded_distance_in_ = 0.0;
   std::vector<PoseCheck> checks_;
   bool judged_ = false;
   double kidnap_at_s_ = -1.0;

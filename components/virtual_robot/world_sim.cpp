@@ -379,6 +379,7 @@ SimTruth WorldSim::Truth() const {
   t.lateral_offset_in = (p - a).dot(-Left(u));
   t.heading_error_rad = WrapPi(X_WR_.theta_rad - std::atan2(-u.y(), -u.x()));
   t.axis_position_in = axis_start_in_[nearest] + along_axis[nearest] * (b - a).norm();
+  t.in_ring_hallway = distance[nearest] <= 0.5 * hallway_width_in_;
   // Corners are where the axis bends (an open ring's ends are not).
   t.corner_distance_in = std::numeric_limits<double>::infinity();
   for (int j = closed_ ? 0 : 1; j < static_cast<int>(axis_.size()); ++j) {

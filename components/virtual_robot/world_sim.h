@@ -74,6 +74,11 @@ struct SimTruth {
   // the robot turns at; steps passed straight are not corners).
   double axis_position_in = 0.0;
   double corner_distance_in = 0.0;
+  // The base centre lies within half the hallway's width of the nearest axis segment (the
+  // segment, not its line): it has not left the ring's hallway for another corridor, a hall
+  // or through an open end, where the offset and heading above say nothing of how well it
+  // keeps to a hallway.
+  bool in_ring_hallway = true;
   // Contacts of the base's footprint with the scene's walls so far, and whether it touches
   // one now.
   int collisions = 0;

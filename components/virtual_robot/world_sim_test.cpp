@@ -260,6 +260,7 @@ corridors:
   EXPECT_EQ(sim.Truth().seen_ring_id, "main");
   EXPECT_EQ(sim.Truth().seen_edge_index, sim.Truth().edge_index);
   EXPECT_DOUBLE_EQ(sim.Truth().seen_offset_in, sim.Truth().offset_in);
+  EXPECT_TRUE(sim.Truth().in_ring_hallway);
   // Turn in place to face -y (down the wing), then drive 200 in.
   for (int i = 0; i < 2000; ++i) {
     const double error = std::remainder(-M_PI / 2.0 - sim.pose().theta_rad, 2.0 * M_PI);
@@ -272,6 +273,10 @@ corridors:
   const SimTruth t = sim.Truth();
   ASSERT_LT(t.X_WR.y_in, -150.0);
   EXPECT_EQ(t.seen_ring_id, "wing");
+  // Out of the main corridor's hallway: its axis is 150 in and more away, and the envelope
+  // is not judged on it.
+  EXPECT_FALSE(t.in_ring_hallway);
+  EXPECT_GT(std::abs(t.lateral_offset_in), 96.0);
   ASSERT_GE(t.seen_edge_index, 0);
   ASSERT_LT(t.seen_edge_index, t.seen_ring_edge_count);
   const map::Ring& wing = floor.ring(floor.FindRing("wing"));

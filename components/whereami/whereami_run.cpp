@@ -557,6 +557,7 @@ RunResult Run::Finish() {
   result_.kidnapped = robot_.kidnapped();
   result_.max_offset_in = robot_.max_offset_in();
   result_.max_heading_deg = robot_.max_heading_deg();
+  result_.off_ring_ft = robot_.off_ring_ft();
   if (options_.record_path) result_.path = robot_.path();
   const std::vector<map::SensedEdge>& sensed =
       measuring_ ? assembler_.sequence() : stack_.localizer().localizer().sensed_sequence();

@@ -139,6 +139,7 @@ struct RunResult {
   int collisions = 0;
   double max_offset_in = 0.0;       // beyond 8 ft of corners, after 20 ft
   double max_heading_deg = 0.0;
+  double off_ring_ft = 0.0;  // travelled outside the start ring's hallway, not judged
   double sim_s = 0.0;
   std::string ended;                // why the run ended
   // With RunOptions::trace: the localizer's sensed sequence when the run ended, and the

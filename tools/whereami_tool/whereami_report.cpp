@@ -57,6 +57,7 @@ Summary Summarize(const std::vector<RunResult>& results) {
     s.start_redraws += static_cast<int>(r.start_redraws.size());
     s.max_offset_in = std::max(s.max_offset_in, r.max_offset_in);
     s.max_heading_deg = std::max(s.max_heading_deg, r.max_heading_deg);
+    s.left_ring += r.off_ring_ft > 0.0;
     if (r.kidnapped) {
       ++s.kidnapped;
       s.lost_detected += r.lost_detected;
@@ -388,9 +389,12 @@ void PrintRun(const RunResult& r, const RunSetup& setup, const ToolOptions& opti
   }
   out << fmt::format(
       "\n            {} frames, {} doors seen, {} collisions, envelope max "
-      "{:.1f} in / {:.1f} deg; {:.1f} s simulated, {}\n",
-      r.frames, r.doors_observed, r.collisions, r.max_offset_in, r.max_heading_deg, r.sim_s,
-      r.ended);
+      "{:.1f} in / {:.1f} deg{}; {:.1f} s simulated, {}\n",
+      r.frames, r.doors_observed, r.collisions, r.max_offset_in, r.max_heading_deg,
+      r.off_ring_ft > 0.0
+          ? fmt::format(" ({:.1f} ft outside the start ring's hallway, not judged)", r.off_ring_ft)
+          : std::string(),
+      r.sim_s, r.ended);
   if (options.trace) {
     out << "            sensed: " << r.sensed_trace << "\n            passed: " << r.true_trace
         << "\n";
@@ -446,6 +450,7 @@ nlohmann::json RunJson(const RunResult& r) {
       {"collisions", r.collisions},
       {"max_offset_in", r.max_offset_in},
       {"max_heading_deg", r.max_heading_deg},
+      {"off_ring_ft", r.off_ring_ft},
       {"sim_s", r.sim_s},
       {"ended", r.ended},
       {"ending", ToString(r.ending())},
@@ -459,9 +464,11 @@ nlohmann::json RunJson(const RunResult& r) {
 void PrintSummary(const Summary& s, const RunSetup& setup, std::ostream& out) {
   out << fmt::format(
       "\n{} runs: {} localized, {} correct ({:.1f} %); {} collisions; envelope beyond 8 ft of "
-      "corners after 20 ft: max |offset| {:.1f} in, max |heading error| {:.1f} deg\n",
+      "corners after 20 ft, in the start ring's hallway: max |offset| {:.1f} in, max |heading "
+      "error| {:.1f} deg; {} runs went on outside it (another corridor, a hall), not judged "
+      "there\n",
       s.runs, s.localized, s.correct, 100.0 * s.correct / s.runs, s.collisions, s.max_offset_in,
-      s.max_heading_deg);
+      s.max_heading_deg, s.left_ring);
   std::vector<std::string> endings;
   for (const Ending e : {Ending::kCorrect, Ending::kWrong, Ending::kNoneInTime, Ending::kCollision,
                          Ending::kFailed}) {

@@ -57,6 +57,7 @@ struct Summary {
   int start_redraws = 0;          // starts refused and drawn again, over all runs
   double max_offset_in = 0.0;
   double max_heading_deg = 0.0;
+  int left_ring = 0;  // runs that travelled outside the start ring's hallway
 };
 Summary Summarize(const std::vector<RunResult>& results);
 
