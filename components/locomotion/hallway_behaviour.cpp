@@ -502,8 +502,11 @@ bool HallwayBehaviour::BrakeAndAct(double wall_in, double odometry_heading_rad, 
   out.turn_started = true;
   blocked_ = false;
   out.turn_kind = pending_;
-  out.reason = fmt::format("{} {:.0f} in ahead: turning {:+.0f} deg in place", ToString(pending_),
-                           wall_in, RadToDeg(pending_rotate_rad_));
+  // A turn decided on an opened side alone may have no wall sensed ahead to give a distance.
+  const std::string ahead = std::isfinite(wall_in) ? fmt::format("{:.0f} in ahead", wall_in)
+                                                   : std::string("ahead, no wall sensed");
+  out.reason = fmt::format("{} {}: turning {:+.0f} deg in place", ToString(pending_), ahead,
+                           RadToDeg(pending_rotate_rad_));
   Report(out);
   return true;
 }
