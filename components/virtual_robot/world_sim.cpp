@@ -65,6 +65,7 @@ WorldSim::WorldSim(const map::Map& map, const sensing::RobotConfig& robot,
   const map::Ring& ring = map.ring(ring_);
   ring_id_ = ring.id;
   closed_ = ring.closed;
+  corridor_outline_ = ring.outline == map::Outline::kCorridor;
   double s = 0.0;
   for (int i = 0; i < ring.EdgeCount(); ++i) {
     node_in_.emplace_back(ring.nodes[i].x_in, ring.nodes[i].y_in);
@@ -378,6 +379,9 @@ SimTruth WorldSim::Truth() const {
   const Eigen::Vector2d u = Unit(a, b);
   t.lateral_offset_in = (p - a).dot(-Left(u));
   t.heading_error_rad = WrapPi(X_WR_.theta_rad - std::atan2(-u.y(), -u.x()));
+  if (corridor_outline_ && std::abs(t.heading_error_rad) > kPi / 2.0) {
+    t.heading_error_rad = WrapPi(t.heading_error_rad + kPi);
+  }
   t.axis_position_in = axis_start_in_[nearest] + along_axis[nearest] * (b - a).norm();
   t.in_ring_hallway = distance[nearest] <= 0.5 * hallway_width_in_;
   // Corners are where the axis bends (an open ring's ends are not).

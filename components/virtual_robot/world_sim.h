@@ -64,9 +64,13 @@ struct SimTruth {
   // keeps the direction the base travelled before the turn).
   bool forward_in_ring = false;
   // Relative to the nearest segment of the hallway axis (the mapped wall, its steps under
-  // 3 ft passed straight, offset by half the hallway, mitred at corners): the signed offset of the base centre, positive toward the
-  // mapped wall, and the heading error of the base's forward axis from the axis direction
-  // that keeps the mapped wall on the left (against ring order), CCW positive.
+  // 3 ft passed straight, offset by half the hallway, mitred at corners): the signed offset of the
+  // base centre, positive toward the mapped wall, and the heading error of the base's forward axis
+  // from the axis direction that keeps the mapped wall on the left (against ring order), CCW
+  // positive. On a corridor outline, whose camera may watch either wall, the heading error is taken
+  // from the nearer of the corridor's two directions (within ±90°): where one side lies open (a
+  // lobby's mouth) the nearest stretch is the other side's, and a base travelling along the
+  // corridor is on its axis either way.
   double lateral_offset_in = 0.0;
   double heading_error_rad = 0.0;
   // Path length along the axis of the base's foot on it (ring order, from the start of the
@@ -168,6 +172,7 @@ class WorldSim {
   std::string ring_id_;
   int ring_ = 0;
   bool closed_ = true;
+  bool corridor_outline_ = false;  // the ring outlines a corridor (both walls, map format 2)
   double hallway_width_in_ = 0.0;  // the ring's, or the settings' when it gives none
   // walls_[0] is the start ring; with a corridor outline the floor's other rings follow.
   std::vector<RingWalls> walls_;

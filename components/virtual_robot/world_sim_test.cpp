@@ -21,6 +21,21 @@ using ::testing::DoubleNear;
 using testing::Exact;
 using testing::SquareRing;
 
+// The ring position of the place at x on a wall of the ring along y = wall_y (-1: none).
+double RingPositionAbreast(const map::Ring& ring, double x_in, double wall_y_in) {
+  double s = 0.0;
+  for (int e = 0; e < ring.EdgeCount(); ++e) {
+    const map::Node& a = ring.nodes[e];
+    const map::Node& b = ring.nodes[(e + 1) % ring.NodeCount()];
+    if (std::abs(a.y_in - wall_y_in) < 1e-6 && std::abs(b.y_in - wall_y_in) < 1e-6 &&
+        std::min(a.x_in, b.x_in) < x_in && std::max(a.x_in, b.x_in) > x_in) {
+      return s + std::abs(x_in - a.x_in);
+    }
+    s += ring.edges[e].metric_in;
+  }
+  return -1.0;
+}
+
 TEST(WorldSimTest, ForwardTravelMovesAgainstRingOrderByTheWheelTravel) {
   WorldSim sim(SquareRing(), sensing::RobotConfig{}, Exact(), 150.0, 1);
   const SimTruth before = sim.Truth();
@@ -244,17 +259,7 @@ corridors:
   c.ring_id = "main";
   // A start abreast of the mouth, across from it: the place at x = 744 on the wall at
   // y = 48 (the main corridor's axis is y = 0).
-  const map::Ring& main = floor.ring(floor.FindRing("main"));
-  double start_in = -1.0, s = 0.0;
-  for (int e = 0; e < main.EdgeCount(); ++e) {
-    const map::Node& a = main.nodes[e];
-    const map::Node& b = main.nodes[(e + 1) % main.NodeCount()];
-    if (std::abs(a.y_in - 48.0) < 1e-6 && std::abs(b.y_in - 48.0) < 1e-6 &&
-        std::min(a.x_in, b.x_in) < 744.0 && std::max(a.x_in, b.x_in) > 744.0) {
-      start_in = s + std::abs(744.0 - a.x_in);
-    }
-    s += main.edges[e].metric_in;
-  }
+  const double start_in = RingPositionAbreast(floor.ring(floor.FindRing("main")), 744.0, 48.0);
   ASSERT_GE(start_in, 0.0);
   WorldSim sim(floor, sensing::RobotConfig{}, c, start_in, 1);
   EXPECT_EQ(sim.Truth().seen_ring_id, "main");
@@ -293,6 +298,46 @@ corridors:
   // Judged there, a pose on the main corridor is wrong and one on the wing right.
   EXPECT_FALSE(PoseMatchesTruth("main", t.edge_index, t.forward_in_ring, t));
   EXPECT_TRUE(PoseMatchesTruth("wing", t.seen_edge_index, t.seen_forward_in_ring, t));
+}
+
+TEST(WorldSimTest, OnACorridorOutlineEitherDirectionAlongTheCorridorIsOnTheAxis) {
+  // The camera may watch either wall of a corridor outline: a base turned round to travel the
+  // other way keeps to the axis, and its heading error is its angle from the corridor's
+  // direction it faces along, not 180°, also abreast of a lobby's mouth, where the wall it now
+  // watches is open and the nearest stretch of the axis is the other wall's.
+  const map::Map floor = map::ParseFloorPlan(R"(stickrep_floor: 1
+name: lobby_mouth
+corridors:
+  - id: main
+    width_in: 96
+    start: {xy_in: [0, 0], heading_deg: 0}
+    path:
+      - straight_in: 1200
+    ends: {start: wall, end: wall}
+    left:
+      - {at_in: 400, alcove: {width_in: 400, depth_in: 300}}
+)",
+                                             "lobby_mouth.floor.yaml");
+  WorldSimConfig c = Exact();
+  c.ring_id = "main";
+  // Abreast of the mouth's middle on the closed wall (y = -48), facing west along it.
+  const double start_in = RingPositionAbreast(floor.ring(floor.FindRing("main")), 600.0, -48.0);
+  ASSERT_GE(start_in, 0.0);
+  WorldSim sim(floor, sensing::RobotConfig{}, c, start_in, 1);
+  ASSERT_NEAR(sim.pose().x_in, 600.0, 1.0);
+  const double start_theta = sim.pose().theta_rad;
+  EXPECT_NEAR(sim.Truth().heading_error_rad, 0.0, DegToRad(0.5));
+  // Turn in place by 170°: 10° short of the other direction along the corridor.
+  const double target = std::remainder(start_theta + DegToRad(170.0), 2.0 * M_PI);
+  for (int i = 0; i < 4000; ++i) {
+    const double error = std::remainder(target - sim.pose().theta_rad, 2.0 * M_PI);
+    if (std::abs(error) < DegToRad(0.2)) break;
+    const double v = std::copysign(0.2, error);
+    sim.Step(0.02, -v, v);
+  }
+  const SimTruth t = sim.Truth();
+  EXPECT_TRUE(t.in_ring_hallway);
+  EXPECT_NEAR(std::abs(RadToDeg(t.heading_error_rad)), 10.0, 0.5);
 }
 
 TEST(WorldSimTest, UnknownRingIsRejected) {
