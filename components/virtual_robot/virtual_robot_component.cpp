@@ -227,10 +227,13 @@ std::string VirtualRobotComponent::Summary() const {
       "time, longest step {:.0f} ms (nominal {:.0f}); travelled {:.1f} in, now on edge {} of ring "
       "'{}'; {} "
       "collisions; after 20 ft, beyond 8 ft of corners: max |offset| {:.1f} in, max |heading "
-      "error| {:.1f} deg ({:.1f} ft outside the ring's hallway, not judged){}",
+      "error| {:.1f} deg{}{}",
       start_, frames_, sim_s * config_.camera_rate_hz, scans_, sim_s, config_.real_time_factor,
       max_step_s_ * 1e3, 1e3 / config_.sim_rate_hz, t.distance_in, t.edge_index, sim_->ring_id(),
-      t.collisions, max_offset_in_, max_heading_deg_, off_ring_ft(),
+      t.collisions, max_offset_in_, max_heading_deg_,
+      off_ring_in_ > 0.0
+          ? fmt::format(" ({:.1f} ft outside the ring's hallway, not judged)", off_ring_ft())
+          : std::string(),
       checks.empty() ? "; no pose recovered" : checks);
 }
 
