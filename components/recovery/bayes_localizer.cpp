@@ -35,32 +35,6 @@ BayesLocalizer::BayesLocalizer(const map::MatchIndex& index, BayesModel model)
   for (auto* v : {&lb1_, &lb2_, &nlb1_, &nlb2_, &fd1_, &fd2_, &nfd1_, &nfd2_}) {
     v->assign(states_, 0);
   }
-  outside_at_.assign(index.EdgeCount(), 0.0);
-  leaving_at_.assign(index.EdgeCount(), 0.0);
-  near_open_end_.resize(index.EdgeCount());
-  for (int o = 0; o < index.EdgeCount(); ++o) {
-    if (!index.open_end(o)) continue;
-    open_ends_.push_back(o);
-    // A map that does not place the mouth (its nodes not as far apart as it is wide) says
-    // nothing of what lies near it: belief leaving through it starts again from the prior.
-    if (std::abs(index.segment_in(o) - index.metric(o)) > 0.25 * index.metric(o)) continue;
-    // The edges within reach of the mouth's middle, on every ring.
-    const double reach = model_.settings.open_end_reach_in + 0.5 * index.metric(o);
-    std::vector<double>& scale = near_open_end_[o];
-    scale.assign(index.EdgeCount(), 0.0);
-    double near_in = 0.0;
-    for (int g = 0; g < index.EdgeCount(); ++g) {
-      if (index.DistanceTo(g, index.mid_x_in(o), index.mid_y_in(o)) > reach) continue;
-      scale[g] = 1.0;
-      near_in += index.metric(g);
-    }
-    for (double& f : scale) f *= near_in > 0.0 ? total_length_in_ / near_in : 1.0;
-  }
-}
-
-void BayesLocalizer::ClearOutside() {
-  outside_ = 0.0;
-  for (const int o : open_ends_) outside_at_[o] = 0.0;
 }
 
 void BayesLocalizer::Reset() {
@@ -69,7 +43,7 @@ void BayesLocalizer::Reset() {
   std::fill(i1_.begin(), i1_.end(), 0.0);
   std::fill(i2_.begin(), i2_.end(), 0.0);
   ClearLeafPhases();
-  ClearOutside();
+  outside_ = 0.0;
   status_ = RecoveryStatus::kEmpty;
   best_ = PoseBelief{};
   edges_ = 0;
@@ -288,7 +262,7 @@ void BayesLocalizer::WeighMark(const map::SensedEdge& e) {
 }
 
 void BayesLocalizer::First(const map::SensedEdge& e) {
-  ClearOutside();
+  outside_ = 0.0;
   std::fill(n_.begin(), n_.end(), 0.0);
   ClearPrev();
   std::fill(i1_.begin(), i1_.end(), 0.0);
@@ -297,15 +271,12 @@ void BayesLocalizer::First(const map::SensedEdge& e) {
   AddPrior(e, 1.0);
 }
 
-void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight,
-                              const std::vector<double>* scale) {
+void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight) {
   const Confusion& cf = model_.confusion;
   const double eps = model_.settings.outlier;
   const bool door = map::IsDoorCode(e.code);
   const double unit = door ? 1.0 : 1.0 / kOutlierSpanIn;
   for (int g = 0; g < index_.EdgeCount(); ++g) {
-    const double w = scale != nullptr ? weight * (*scale)[g] : weight;
-    if (!(w > 0.0)) continue;
     const double len = index_.metric(g);
     const map::SymbolCode code = index_.code(g);
     // Prior: the start is uniform along the walls, so edge g holds it with len / total.
@@ -349,22 +320,22 @@ void BayesLocalizer::AddPrior(const map::SensedEdge& e, double weight,
       if (prior_dir_ != 0 && dir != prior_dir_) continue;
       const int s = State(g, dir);
       const ChainedPrior& ch = chained[dir > 0 ? 0 : 1];
-      n_[s] += w * (ch.end + pn + eps * unit * prior);
+      n_[s] += weight * (ch.end + pn + eps * unit * prior);
       // W1 is known only from below: the seen part of the wall for a start in it, less for
       // a run into it that began behind. One W1 is kept per state, the larger share's.
-      const double add1 = w * (pi1 + ch.first_part);
+      const double add1 = weight * (pi1 + ch.first_part);
       if (add1 > 0.0 && add1 >= i1_[s]) {
         c1_[s] = ch.first_part > pi1 ? ch.w1_min_in : e.metric_in;
         lb1_[s] = 1;
         fd1_[s] = 0;
       }
       i1_[s] += add1;
-      if (pi2 > 0.0 && w * pi2 >= i2_[s]) {
+      if (pi2 > 0.0 && weight * pi2 >= i2_[s]) {
         c2_[s] = door ? e.metric_in : 0.0;
         lb2_[s] = 1;
         fd2_[s] = 1;
       }
-      i2_[s] += w * pi2;
+      i2_[s] += weight * pi2;
     }
   }
 }
@@ -426,30 +397,24 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
     std::fill(v->begin(), v->end(), 0.0);
   // Belief that passes out through a corridor's open end: the ring says nothing of where
   // the robot goes from there (across the corridor beyond, into a hall), so that belief
-  // starts again near the mouth, with what was sensed after it as a first edge. Belief that
+  // starts again from the prior, with what was sensed after it as a first edge. Belief that
   // left with the wall sensed last time (outside_) starts again here too.
-  double shares = 0.0;
-  for (const int o : open_ends_) shares += outside_at_[o];
-  for (const int o : open_ends_) {
-    leaving_at_[o] = shares > 0.0 ? outside_ * outside_at_[o] / shares : 0.0;
-  }
-  ClearOutside();
-  double anywhere = 0.0;
+  double leaving = outside_;
+  outside_ = 0.0;
   // A kidnap before this edge: that share of every state starts again from the prior too.
   const double kidnap = model_.settings.kidnap_per_edge;
   if (kidnap > 0.0) {
     for (auto* v : {&n_, &i1_, &i2_, &s1_, &s2_, &t_, &h_}) {
       for (double& p : *v) p *= 1.0 - kidnap;
     }
-    for (const int o : open_ends_) leaving_at_[o] *= 1.0 - kidnap;
-    anywhere = kidnap;
+    leaving = leaving * (1.0 - kidnap) + kidnap;
   }
 
   for (int s = 0; s < states_; ++s) {
     const int g = s / 2;
     const int dir = (s & 1) ? -1 : +1;
     const double pn = n_[s];
-    if (pn > 0.0) NextFromEnd(g, dir, pn, e);
+    if (pn > 0.0) NextFromEnd(g, dir, pn, e, &leaving);
     const double p1 = i1_[s];
     if (p1 > 0.0) NextFromFirstPart(s, p1, e);
     const double p2 = i2_[s];
@@ -469,30 +434,20 @@ void BayesLocalizer::Next(const map::SensedEdge& e) {
   s2_.swap(ns2_);
   t_.swap(nt_);
   h_.swap(nh_);
-  // Outside the ring the robot met the next wall somewhere along it: a partial wall.
-  map::SensedEdge after = e;
-  if (!door) after.metric_is_lower_bound = true;
-  AddLeaving(after, anywhere);
+  if (leaving > 0.0) {
+    // Outside the ring the robot met the next wall somewhere along it: a partial wall.
+    map::SensedEdge after = e;
+    if (!door) after.metric_is_lower_bound = true;
+    AddPrior(after, leaving);
+  }
   for (int s = 0; s < states_; ++s) {
     prev_seen_[s] = n_[s] > 0.0 ? nseen_[s] / n_[s] : 0.0;
     prev_missed_[s] = n_[s] > 0.0 ? nmissed_[s] / n_[s] : 0.0;
   }
 }
 
-void BayesLocalizer::AddLeaving(const map::SensedEdge& e, double anywhere) {
-  const double near_share = model_.settings.open_end_near_share;
-  for (const int o : open_ends_) {
-    const double m = leaving_at_[o];
-    if (!(m > 0.0)) continue;
-    const std::vector<double>& near = near_open_end_[o];
-    const double share = near.empty() ? 0.0 : near_share;
-    anywhere += m * (1.0 - share);
-    if (share > 0.0) AddPrior(e, m * share, &near);
-  }
-  if (anywhere > 0.0) AddPrior(e, anywhere);
-}
-
-void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e) {
+void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e,
+                                 double* leaving) {
   const double eps = model_.settings.outlier;
   const bool door = map::IsDoorCode(e.code);
   const bool wall = e.code == map::kWallCode;
@@ -500,7 +455,7 @@ void BayesLocalizer::NextFromEnd(int g, int dir, double pn, const map::SensedEdg
   const int n1 = index_.Step(g, dir);
   if (n1 < 0) return;
   if (index_.open_end(n1)) {
-    leaving_at_[n1] += pn;
+    *leaving += pn;
     return;
   }
   const int s1 = State(n1, dir);
@@ -549,9 +504,7 @@ void BayesLocalizer::NextWallFromEnd(int n1, int dir, double pn, double angle,
     const double reach = model_.settings.open_end_reach_in;
     const double sigma = std::max(1.0, model_.noise.WallSigmaIn(len1));
     if (e.metric_in >= len1 - 2.0 * sigma && e.metric_in <= len1 + reach) {
-      const double out = pn * angle * (1.0 - pf) / (reach + 2.0 * sigma);
-      outside_ += out;
-      outside_at_[n2] += out;
+      outside_ += pn * angle * (1.0 - pf) / (reach + 2.0 * sigma);
     }
   }
   if (e.metric_in <= len1) {
@@ -832,7 +785,7 @@ void BayesLocalizer::Normalise() {
     std::fill(i2_.begin(), i2_.end(), 0.0);
     ClearLeafPhases();
     ClearPrev();
-    ClearOutside();
+    outside_ = 0.0;
     sum = 1.0;
   }
   const double inv = 1.0 / sum;

@@ -30,12 +30,12 @@
 //   H(d)   the sensed wall before door d held its first leaf; the door sensed next is the
 //          other leaf.
 // Adjacency angles, when sensed, must agree with the map node. Belief that reaches a
-// corridor's open end (map::IsOpenEnd) leaves the ring there and starts again from a prior
-// gathered near the mouth (ErrorModelSettings::open_end_near_share; the wall sensed last
-// before it may run on out through it, as far as the next thing seen). The first sensed edge is
-// weighed by a prior uniform along the walls (a wall start is the part seen from the start point:
-// any wall at least that long). After each edge the belief is normalised; a pose is reported when
-// the best (edge, direction) holds at least `threshold` of the posterior.
+// corridor's open end (map::IsOpenEnd) leaves the ring there and starts again from the
+// prior (the wall sensed last before it may run on out through it, as far as the next thing
+// seen). The first sensed edge is weighed by a prior uniform along the walls (a wall start is the
+// part seen from the start point: any wall at least that long). After each edge the belief is
+// normalised; a pose is reported when the best (edge, direction) holds at least `threshold` of the
+// posterior.
 
 #include <cstdint>
 #include <limits>
@@ -148,13 +148,8 @@ class BayesLocalizer {
   // Weighs the belief after a sensed door by how its leaf's mark was read at each map edge
   // (Confusion::MarkLikelihood); nothing when the model has no marks.
   void WeighMark(const map::SensedEdge& e);
-  // Adds `weight` times the belief a first sensed edge `e` gives (a start anywhere, or with
-  // `scale`, the prior's factor on each edge, a start among the edges it does not zero).
-  void AddPrior(const map::SensedEdge& e, double weight,
-                const std::vector<double>* scale = nullptr);
-  // The belief that left through open ends (leaving_at_) and `anywhere` started again with
-  // `e`, the first edge sensed outside: near each mouth and from the prior.
-  void AddLeaving(const map::SensedEdge& e, double anywhere);
+  // Adds `weight` times the belief a first sensed edge `e` gives (a start anywhere).
+  void AddPrior(const map::SensedEdge& e, double weight);
   // AddPrior()'s share for a partial wall `e` seen in wall g that began earlier, behind g
   // in direction `dir`, and ran over missed doors into g: the start lies in the missed door
   // or the wall behind it that puts the wall's end where it was sensed, at g's end (`end`)
@@ -169,8 +164,8 @@ class BayesLocalizer {
   ChainedPrior PriorOverMissedDoors(int g, int dir, double sigma, const map::SensedEdge& e) const;
   void Next(const map::SensedEdge& e);
   // Next() for the mass of one state, phase by phase: from N(g), from I1(s), from I2(s).
-  // NextFromEnd adds the mass that leaves the ring through an open end to leaving_at_.
-  void NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e);
+  // NextFromEnd adds the mass that leaves the ring through an open end to `leaving`.
+  void NextFromEnd(int g, int dir, double pn, const map::SensedEdge& e, double* leaving);
   // `before`: what the path passed just before wall n1 (a door seen, or unknown).
   void NextWallFromEnd(int n1, int dir, double pn, double angle, const map::SensedEdge& e,
                        Confusion::Before before);
@@ -269,15 +264,8 @@ class BayesLocalizer {
   bool skip_partial_ = false;  // after Reverse(): the re-seen partial edge is not evidence
   int prior_dir_ = 0;          // SetTravelDirection
   // Belief that left the map's rings through an open end with the last sensed wall: it
-  // starts again near the mouth at the next edge. outside_at_ splits it by open end (its
-  // shares; the sum is outside_ up to normalisation).
+  // starts again from the prior at the next edge.
   double outside_ = 0.0;
-  std::vector<double> outside_at_;
-  std::vector<double> leaving_at_;  // Next(): the belief leaving by open end
-  std::vector<int> open_ends_;
-  // Per open end: AddPrior()'s scale for belief that left through it (empty: not an open end).
-  std::vector<std::vector<double>> near_open_end_;
-  void ClearOutside();
   int edges_ = 0;
   std::uint64_t rejected_ = 0;
 };

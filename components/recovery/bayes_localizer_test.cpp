@@ -4,8 +4,6 @@
 
 #include <cmath>
 #include <limits>
-#include <tuple>
-#include <utility>
 #include <vector>
 
 #include "recovery/test_support.h"
@@ -511,10 +509,7 @@ TEST_F(BayesLocalizerTest, ExplainsAMissizedDoor) {
 // The test corridor and a wing off it: a corridor outline whose end is open (an opening
 // between two 270 deg corners, map::IsOpenEnd), walked with the wall on the right:
 //   13 open end 88 | 14 W100 15 D30/30 16 W80 | 17 W88 (far end) | 18 W120 19 D30 20 W60
-// With `placed`, the wing's nodes stand in the corridor's plane (which lies along y = 0,
-// x = 0..825 to its last node): its mouth at y = -100, x = 900..988, and the wing south of
-// it; without, they all lie at the origin (a map that does not place the wing).
-map::Map CorridorWithWing(bool placed = false) {
+map::Map CorridorWithWing() {
   using map::Edge;
   const map::Map corridor = testing::CorridorMap();
   map::Ring wing;
@@ -524,14 +519,9 @@ map::Map CorridorWithWing(bool placed = false) {
   open_end.metric_in = 88;
   wing.edges = {open_end, Edge::Wall(100), Edge::Door(DoorClass::k30_30), Edge::Wall(80),
                 Edge::Wall(88), Edge::Wall(120), Edge::Door(DoorClass::k30), Edge::Wall(60)};
-  const std::vector<std::pair<double, double>> at = {{900, -100}, {988, -100}, {988, -200},
-                                                     {988, -260}, {988, -340}, {900, -340},
-                                                     {900, -220}, {900, -190}};
-  const std::vector<double> angles = {270.0, 270.0, 180.0, 180.0, 90.0, 90.0, 180.0, 180.0};
-  for (std::size_t i = 0; i < angles.size(); ++i) {
+  for (const double angle : {270.0, 270.0, 180.0, 180.0, 90.0, 90.0, 180.0, 180.0}) {
     map::Node n;
-    n.angle_deg = angles[i];
-    if (placed) std::tie(n.x_in, n.y_in) = at[i];
+    n.angle_deg = angle;
     wing.nodes.push_back(n);
   }
   return map::Map(corridor.info(), {corridor.ring(0), wing});
@@ -577,39 +567,6 @@ TEST_F(BayesLocalizerOpenEndTest, BeliefThatLeavesThroughAnOpenEndStartsAgainFro
   EXPECT_EQ(b.best().edge, 10);
   EXPECT_EQ(b.best().dir, +1);
   EXPECT_EQ(b.status(), RecoveryStatus::kLocalized);
-}
-
-TEST(BayesLocalizerPlacedOpenEndTest, BeliefLeavingAPlacedMouthStartsAgainNearIt) {
-  // The corridor's 40 in doors: edge 11 (x = 785..825) lies 155 in from the mouth's middle,
-  // edge 7 (x = 544..584) 373 in, beyond the reach of what is seen next outside (240 in and
-  // half the mouth). Leaving the wing and reading a 40 in door, the robot is at edge 11 far
-  // more likely than at edge 7; a map that does not place the wing cannot say so.
-  const auto after_leaving = [](const map::Map& map, double near_share) {
-    const map::MatchIndex index(map);
-    EXPECT_TRUE(index.open_end(13));
-    BayesModel m;
-    m.confusion = Resolve(ErrorModel::Paper(), index);
-    m.settings.threshold = 0.99;
-    m.settings.open_end_near_share = near_share;
-    BayesLocalizer b(index, m);
-    for (const map::SensedEdge& e :
-         {Wall(70, kNaN, true), Door(DoorClass::k30), Wall(60), Door(DoorClass::k40)}) {
-      b.Add(e);
-    }
-    const auto on = [&](int g) { return b.PoseProbability(g, +1) + b.PoseProbability(g, -1); };
-    return std::make_pair(on(11), on(7));
-  };
-  const map::Map placed = CorridorWithWing(/*placed=*/true);
-  const auto [near11, near7] = after_leaving(placed, 0.9);
-  EXPECT_GT(near11, 5.0 * near7);
-  EXPECT_GT(near11, 0.5);
-  // The share from the prior over the floor keeps the far door possible.
-  EXPECT_GT(near7, 0.01);
-  // All from the prior, and on the map that does not place the wing, the two doors are alike.
-  const auto [prior11, prior7] = after_leaving(placed, 0.0);
-  EXPECT_NEAR(prior11 / prior7, 1.0, 0.05);
-  const auto [unplaced11, unplaced7] = after_leaving(CorridorWithWing(), 0.9);
-  EXPECT_NEAR(unplaced11 / unplaced7, 1.0, 0.05);
 }
 
 TEST_F(BayesLocalizerOpenEndTest, TheLastWallBeforeAnOpenEndMayRunOnOutThroughIt) {

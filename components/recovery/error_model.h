@@ -257,13 +257,6 @@ struct BayesSettings {
   // as the next thing seen outside, up to this much past the wall's end (across the open
   // end and the corridor beyond: two 120 in hallways).
   double open_end_reach_in = 240.0;
-  // Belief that leaves through an open end starts again near the mouth: this share of it over
-  // the edges of every ring that pass within open_end_reach_in (and half the mouth's width) of
-  // the mouth's middle, where the robot meets the next thing it sees (the corridor beyond, a
-  // hall across it, the corridor it left), uniform along them; the rest from the prior over
-  // the whole floor (the robot may have gone far before it sees anything). 0: all from the
-  // prior.
-  double open_end_near_share = 0.9;
   // The probability that the robot was carried anywhere on the floor (kidnapped, or its
   // odometry lost beyond repair) before a sensed edge: that share of the belief starts again
   // from the prior at every edge, so belief held at a wrong place drains to the right one as

@@ -1,7 +1,6 @@
 #include "stickrep/sequence_matcher.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace stickrep::map {
 
@@ -50,26 +49,10 @@ MatchIndex::MatchIndex(const Map& map) {
       angle_end_.push_back(ring.nodes[(i + 1) % ring.NodeCount()].angle_deg);
       open_end_.push_back(IsOpenEnd(e, angle_start_.back(), angle_end_.back()) ? 1 : 0);
       in_row_.push_back(InDoorRow(ring, i) ? 1 : 0);
-      const Node& a = ring.nodes[i];
-      const Node& b = ring.nodes[(i + 1) % ring.NodeCount()];
-      x_start_.push_back(a.x_in);
-      y_start_.push_back(a.y_in);
-      x_end_.push_back(b.x_in);
-      y_end_.push_back(b.y_in);
       ring_of_.push_back(r);
       by_code_[code_.back()].push_back(g);
     }
   }
-}
-
-double MatchIndex::DistanceTo(int g, double x_in, double y_in) const {
-  const double dx = x_end_[g] - x_start_[g], dy = y_end_[g] - y_start_[g];
-  const double length2 = dx * dx + dy * dy;
-  const double t =
-      length2 > 0.0
-          ? std::clamp(((x_in - x_start_[g]) * dx + (y_in - y_start_[g]) * dy) / length2, 0.0, 1.0)
-          : 0.0;
-  return std::hypot(x_start_[g] + t * dx - x_in, y_start_[g] + t * dy - y_in);
 }
 
 SequenceMatcher::SequenceMatcher(const MatchIndex& index, MatchTolerance tolerance)

@@ -91,15 +91,6 @@ class MatchIndex {
   bool open_end(int g) const { return open_end_[g] != 0; }
   // Whether edge g is a door in a row or a short wall between two doors (map::InDoorRow).
   bool in_row(int g) const { return in_row_[g] != 0; }
-  // The distance in the building's plane from (x_in, y_in) to edge g, taken as the straight
-  // segment between its nodes (0 for every edge of a map that gives no node positions).
-  double DistanceTo(int g, double x_in, double y_in) const;
-  // The length of edge g's segment, and its midpoint.
-  double segment_in(int g) const {
-    return std::hypot(x_end_[g] - x_start_[g], y_end_[g] - y_start_[g]);
-  }
-  double mid_x_in(int g) const { return 0.5 * (x_start_[g] + x_end_[g]); }
-  double mid_y_in(int g) const { return 0.5 * (y_start_[g] + y_end_[g]); }
   // Global indices of all edges with this code, in ring order.
   const std::vector<std::int32_t>& EdgesWithCode(SymbolCode code) const { return by_code_[code]; }
 
@@ -127,7 +118,6 @@ class MatchIndex {
   std::vector<double> angle_end_;
   std::vector<std::uint8_t> open_end_;
   std::vector<std::uint8_t> in_row_;
-  std::vector<double> x_start_, y_start_, x_end_, y_end_;
   std::vector<std::int32_t> ring_of_;
   std::vector<std::int32_t> ring_offset_;
   std::vector<std::int32_t> ring_size_;
