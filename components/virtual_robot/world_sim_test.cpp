@@ -36,6 +36,17 @@ double RingPositionAbreast(const map::Ring& ring, double x_in, double wall_y_in)
   return -1.0;
 }
 
+// Turns the base in place (0.2 ft/s on each wheel, opposite ways) until it faces within
+// `tolerance_rad` of `theta_rad`.
+void TurnInPlaceTo(WorldSim& sim, double theta_rad, double tolerance_rad) {
+  for (int i = 0; i < 4000; ++i) {
+    const double error = std::remainder(theta_rad - sim.pose().theta_rad, 2.0 * M_PI);
+    if (std::abs(error) < tolerance_rad) break;
+    const double v = std::copysign(0.2, error);
+    sim.Step(0.02, -v, v);
+  }
+}
+
 TEST(WorldSimTest, ForwardTravelMovesAgainstRingOrderByTheWheelTravel) {
   WorldSim sim(SquareRing(), sensing::RobotConfig{}, Exact(), 150.0, 1);
   const SimTruth before = sim.Truth();
@@ -267,12 +278,7 @@ corridors:
   EXPECT_DOUBLE_EQ(sim.Truth().seen_offset_in, sim.Truth().offset_in);
   EXPECT_TRUE(sim.Truth().in_ring_hallway);
   // Turn in place to face -y (down the wing), then drive 200 in.
-  for (int i = 0; i < 2000; ++i) {
-    const double error = std::remainder(-M_PI / 2.0 - sim.pose().theta_rad, 2.0 * M_PI);
-    if (std::abs(error) < DegToRad(0.5)) break;
-    const double v = std::copysign(0.2, error);
-    sim.Step(0.02, -v, v);
-  }
+  TurnInPlaceTo(sim, -M_PI / 2.0, DegToRad(0.5));
   ASSERT_NEAR(sim.pose().theta_rad, -M_PI / 2.0, DegToRad(0.5));
   for (int i = 0; i < 170; ++i) sim.Step(0.1, 1.0, 1.0);
   const SimTruth t = sim.Truth();
@@ -329,12 +335,7 @@ corridors:
   EXPECT_NEAR(sim.Truth().heading_error_rad, 0.0, DegToRad(0.5));
   // Turn in place by 170°: 10° short of the other direction along the corridor.
   const double target = std::remainder(start_theta + DegToRad(170.0), 2.0 * M_PI);
-  for (int i = 0; i < 4000; ++i) {
-    const double error = std::remainder(target - sim.pose().theta_rad, 2.0 * M_PI);
-    if (std::abs(error) < DegToRad(0.2)) break;
-    const double v = std::copysign(0.2, error);
-    sim.Step(0.02, -v, v);
-  }
+  TurnInPlaceTo(sim, target, DegToRad(0.2));
   const SimTruth t = sim.Truth();
   EXPECT_TRUE(t.in_ring_hallway);
   EXPECT_NEAR(std::abs(RadToDeg(t.heading_error_rad)), 10.0, 0.5);
