@@ -321,6 +321,7 @@ double Localizer::BeliefSinceLastEdge() const {
 }
 
 double Localizer::BeliefNear(int ring, int edge, int dir, int ahead) const {
+  if (!bayes_) return 0.0;
   const int ring_size = index_.RingSize(ring);
   double belief = 0.0;
   // Filter state (g, dir): g sensed last, the robot in the edge after it (k = 1). A

@@ -133,6 +133,9 @@ class Localizer {
   // before the robot has moved): the frame of sensed_spans().
   double odometer_in() const { return assembler_.odometer_in(); }
   int travel_direction() const { return assembler_.travel_direction(); }
+  // Bayes: the share of the filter's belief at the robot in ring-local edge `edge` of `ring`,
+  // travelling `dir`, a neighbour, or up to `ahead` edges further on (0 without a filter).
+  double BeliefNear(int ring, int edge, int dir, int ahead = 0) const;
 
  private:
   void Rebuild(double odometer_in, const std::string& message);
@@ -165,9 +168,6 @@ class Localizer {
   bool NearTrackedPose(const recovery::PoseBelief& b) const;
   // The share of the Bayes filter's belief that agrees with the tracked pose.
   double BeliefInTrackedPose() const;
-  // The share of the filter's belief at the robot in ring-local edge `edge` of `ring`,
-  // travelling `dir`, a neighbour, or up to `ahead` edges further on.
-  double BeliefNear(int ring, int edge, int dir, int ahead = 0) const;
   // Between edges: the belief in the place held at the last sensed edge, carried on by the
   // map edges the tracker has passed since (it dead-reckons past doors the filter has not
   // been given, missed or not yet decided).

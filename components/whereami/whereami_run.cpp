@@ -112,6 +112,7 @@ class Run {
   // Where the camera truly looks, for a trace line: the ring it is seen on (the robot may
   // have gone on from its start ring into another corridor), the view edge and the travel.
   std::string TruthInView(const virtual_robot::SimTruth& t) const;
+  std::string BeliefInTruth(const virtual_robot::SimTruth& t) const;
   double NowS() const { return stack_.executor().ElapsedS(); }
 
   const map::Map& map_;
@@ -528,9 +529,31 @@ void Run::TraceBelief(const message::LocalizationPose& p) {
           : fmt::format("ring '{}' edge {} {} p={:.3f}", p.best.ring_id, p.best.edge_index,
                         p.best.forward ? "fwd" : "back", p.best.probability);
   result_.behaviour_log.push_back(
-      fmt::format("{:7.1f} s  localizer {}: newest {}, best {}, truth {}: {}", NowS(),
+      fmt::format("{:7.1f} s  localizer {}: newest {}, best {}, truth {}{}: {}", NowS(),
                   localizer::ToString(stack_.localizer().localizer().estimate().status), newest,
-                  best, TruthInView(truth), p.message));
+                  best, TruthInView(truth), BeliefInTruth(truth), p.message));
+}
+
+// For a trace line, the Bayes filter's belief at the true place (its view edge or a
+// neighbour, its direction) and the places it holds most belief on (view edge, f/b for the
+// direction): where the belief at the true place drops, those name the reads that pulled it
+// down and where the belief went.
+std::string Run::BeliefInTruth(const virtual_robot::SimTruth& t) const {
+  const localizer::Localizer& loc = stack_.localizer().localizer();
+  if (loc.config().method != localizer::MatchMethod::kBayes) return "";
+  std::string out;
+  if (t.seen_ring_id == sim_.ring_id()) {
+    const int edge = view_.ViewEdge(ring_, t.seen_edge_index);
+    out = fmt::format(" (belief there {:.4f})",
+                      loc.BeliefNear(ring_, edge, t.seen_forward_in_ring ? +1 : -1));
+  }
+  const std::vector<localizer::Hypothesis>& hs = loc.estimate().hypotheses;
+  for (std::size_t i = 0; i < hs.size() && i < 4; ++i) {
+    out += fmt::format("{} {}{}{} {:.3f}", i == 0 ? ", the filter's places" : ",",
+                       hs[i].ring == ring_ ? "" : view_.view().ring(hs[i].ring).id + " ",
+                       hs[i].edge, hs[i].dir > 0 ? "f" : "b", hs[i].probability);
+  }
+  return out;
 }
 
 std::string Run::TruthInView(const virtual_robot::SimTruth& t) const {
