@@ -128,6 +128,7 @@ LocalizerSettings LoadLocalizerSettings(const StrictYaml& c) {
   s.bayes_kidnap_per_edge = c.Get<double>("bayes_kidnap_per_edge", 0.0, 0.5);
   s.bayes_lost_confirm_edges = c.Get<int>("bayes_lost_confirm_edges", 0, 10);
   s.bayes_silence_tests_pose = c.Get<bool>("bayes_silence_tests_pose");
+  s.bayes_best_with_neighbours = c.Get<bool>("bayes_best_with_neighbours");
   s.observation = LoadObservation(c, s.bayes_keep_threshold);
   if (c.Has("on_marked_maps")) {
     const StrictYaml marked = c.Child("on_marked_maps");
@@ -173,6 +174,7 @@ LocalizerConfig MakeLocalizerConfig(const LocalizerSettings& settings, const map
     config.bayes.settings.w2_over_missed_doors = o.bayes_w2_over_missed_doors;
     config.bayes.settings.first_part_in_noise = o.bayes_first_part_in_noise;
     config.bayes.settings.max_missed_doors = o.bayes_max_missed_doors;
+    config.bayes.settings.best_with_neighbours = settings.bayes_best_with_neighbours;
     config.keep_threshold = settings.bayes_keep_threshold;
     config.calibration = o.calibration;
     config.lost_threshold = o.bayes_lost_threshold;

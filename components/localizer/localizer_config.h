@@ -91,6 +91,7 @@ struct LocalizerSettings {
   // Once localized, the silence past the last sensed edge tests the pose too
   // (LocalizerConfig::silence_tests_pose).
   bool bayes_silence_tests_pose = false;
+  bool bayes_best_with_neighbours = false;
 };
 
 // Whether any door of `m` carries a surveyed mark (DoorMarkOfPattern is not kUnknown).

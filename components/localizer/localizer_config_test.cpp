@@ -349,6 +349,19 @@ TEST(LocalizerSettingsTest, WhetherTheSilenceTestsAHeldPoseReachesTheLocalizer) 
   ExpectRefused(WithValue(text, key, "often"), {"bayes_silence_tests_pose"});
 }
 
+TEST(LocalizerSettingsTest, WhetherTheBestPlaceHoldsItsNeighboursReachesTheFilter) {
+  const std::string key = "  bayes_best_with_neighbours: ";
+  const std::string text = Shipped();
+  const map::Map m = HallWithDoor("");
+  for (const bool on : {true, false}) {
+    const std::string value = on ? "true" : "false";
+    EXPECT_EQ(MakeLocalizerConfig(ForMap(Load(WithValue(text, key, value)), m), m)
+                  .bayes.settings.best_with_neighbours,
+              on);
+  }
+  ExpectRefused(WithValue(text, key, "mostly"), {"bayes_best_with_neighbours"});
+}
+
 TEST(LocalizerSettingsTest, AFloorNamedInOnMapsGetsItsOwnCalibrationBeforeAnyOtherModel) {
   // HallWithDoor's map is named "hall".
   const LocalizerSettings s = Load(WithNarrowBlock(WithOwnMapBlock(Shipped(), "hall", "0.5")));

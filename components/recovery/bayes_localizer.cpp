@@ -790,15 +790,15 @@ void BayesLocalizer::Normalise() {
   }
   const double inv = 1.0 / sum;
   outside_ *= inv;
-  best_ = PoseBelief{};
+  mass_scratch_.assign(states_, 0.0);
   for (int s = 0; s < states_; ++s) {
     for (double* v : {&n_[s], &i1_[s], &i2_[s], &s1_[s], &s2_[s], &t_[s], &h_[s]}) {
       *v *= inv;
       if (*v < kPruneBelow) *v = 0.0;
     }
-    const double p = Mass(s);
-    if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
+    mass_scratch_[s] = Mass(s);
   }
+  best_ = BestOf(mass_scratch_);
   // The pose is declared once the best place has held the threshold over confirm_edges
   // further edges as well (and confirm_silent_in of silence, UpdateStatus).
   above_ = best_.probability >= model_.settings.threshold ? above_ + 1 : 0;
@@ -819,6 +819,29 @@ void BayesLocalizer::UpdateStatus() {
   status_ = held ? RecoveryStatus::kLocalized : RecoveryStatus::kAmbiguous;
 }
 
+PoseBelief BayesLocalizer::BestOf(const std::vector<double>& mass) const {
+  PoseBelief best;
+  for (int s = 0; s < states_; ++s) {
+    double p = mass[s];
+    if (model_.settings.best_with_neighbours && p > 0.0) {
+      // The place is the one of the three with the most belief: a state the belief passes
+      // over (a door between two walls it is split on) is not published.
+      bool peak = true;
+      for (int step : {-1, +1}) {
+        const int g = index_.Step(s / 2, step);
+        if (g < 0) continue;
+        const double q = mass[2 * g + (s & 1)];
+        peak = peak && q <= mass[s];
+        p += q;
+      }
+      if (!peak) continue;
+    }
+    if (p > best.probability) best = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
+  }
+  best.probability = std::min(1.0, best.probability);
+  return best;
+}
+
 bool BayesLocalizer::BestIsEdgeBest() const {
   return best_.edge == edge_best_.edge && best_.dir == edge_best_.dir;
 }
@@ -833,11 +856,9 @@ void BayesLocalizer::SetSilence(double silent_in) {
     sum += n_[s] * silence_[s] + (Mass(s) - n_[s]);
   }
   silence_norm_ = sum > 0.0 ? 1.0 / sum : 1.0;
-  best_ = PoseBelief{};
-  for (int s = 0; s < states_; ++s) {
-    const double p = ViewMass(s);
-    if (p > best_.probability) best_ = PoseBelief{s / 2, (s & 1) ? -1 : +1, p};
-  }
+  mass_scratch_.assign(states_, 0.0);
+  for (int s = 0; s < states_; ++s) mass_scratch_[s] = ViewMass(s);
+  best_ = BestOf(mass_scratch_);
   // Silence can withdraw the place the edges put first, never confirm another (UpdateStatus).
   if (!BestIsEdgeBest() || best_.probability < model_.settings.threshold) above_ = 0;
   UpdateStatus();

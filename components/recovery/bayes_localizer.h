@@ -227,6 +227,9 @@ class BayesLocalizer {
   double Mass(int s) const;
   // Mass(s) as SetSilence() weighs it, normalised.
   double ViewMass(int s) const;
+  // The best place from one mass per state (best_with_neighbours: summed with the ring
+  // neighbours'); uses mass_scratch_.
+  PoseBelief BestOf(const std::vector<double>& mass) const;
   // The probability that the edge after N(g), travelling dir, is sensed to end at least
   // silent_in past g's far end (SetSilence).
   double SilenceWeight(int g, int dir, double silent_in) const;
@@ -258,6 +261,7 @@ class BayesLocalizer {
   PoseBelief best_;
   int above_ = 0;  // consecutive edges the best place held the threshold
   double silent_in_ = 0.0;
+  std::vector<double> mass_scratch_;  // one mass per state, for BestOf
   PoseBelief edge_best_;         // best() after the last edge, before any silence
   std::vector<double> silence_;  // SilenceWeight of each state's N phase; empty: none
   double silence_norm_ = 1.0;

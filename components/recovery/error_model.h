@@ -286,6 +286,12 @@ struct BayesSettings {
   // sampler draws what the filter weighs"). On the live reads it changed nothing measured,
   // so the shipped settings leave it off.
   bool first_part_in_noise = false;
+  // The best place is the (edge, direction) whose belief with its two neighbours along the
+  // ring (the same direction) is the most, and that sum is its probability: a place is
+  // judged right when the robot is in its edge or a neighbour (a node may be crossed as the
+  // pose is published), and the filter often splits its belief between neighbours over a
+  // door it cannot tell missed from seen. Off: the single (edge, direction) with the most.
+  bool best_with_neighbours = false;
 };
 
 struct StudyConfig {
