@@ -290,7 +290,9 @@ struct BayesSettings {
   // ring (the same direction) is the most, and that sum is its probability: a place is
   // judged right when the robot is in its edge or a neighbour (a node may be crossed as the
   // pose is published), and the filter often splits its belief between neighbours over a
-  // door it cannot tell missed from seen. Off: the single (edge, direction) with the most.
+  // door it cannot tell from a false one in the wall beside it. Off: the single (edge,
+  // direction) with the most. Measured and off in the shipped configs (docs/whereami.md,
+  // "The best place with its neighbours").
   bool best_with_neighbours = false;
 };
 
