@@ -18,13 +18,19 @@ using testing::Wall;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-BayesLocalizer MakeLocalizer(const map::MatchIndex& index, const ErrorModel& em,
-                            double threshold = 0.99, int confirm_edges = 0,
-                            bool false_door_fit = false) {
+// The filter's model of `em` on `index`, without sensing noise, reporting at `threshold`.
+BayesModel ModelOf(const map::MatchIndex& index, const ErrorModel& em, double threshold) {
   BayesModel m;
   m.confusion = Resolve(em, index);
   m.noise = SensingNoise{};
   m.settings.threshold = threshold;
+  return m;
+}
+
+BayesLocalizer MakeLocalizer(const map::MatchIndex& index, const ErrorModel& em,
+                             double threshold = 0.99, int confirm_edges = 0,
+                             bool false_door_fit = false) {
+  BayesModel m = ModelOf(index, em, threshold);
   m.settings.confirm_edges = confirm_edges;
   m.settings.false_door_fit = false_door_fit;
   return BayesLocalizer(index, m);
@@ -239,10 +245,7 @@ TEST_F(BayesLocalizerTest, ExplainsAFalseDoorThatSplitsAWall) {
 // With best_with_neighbours the best place is the (edge, direction) whose belief with its
 // two ring neighbours' (the same direction) is the most, and that sum is its probability.
 TEST_F(BayesLocalizerTest, WithItsNeighboursTheBestPlaceHoldsTheBeliefAroundIt) {
-  BayesModel m;
-  m.confusion = Resolve(ErrorModel::Paper(), index_);
-  m.noise = SensingNoise{};
-  m.settings.threshold = 0.995;
+  BayesModel m = ModelOf(index_, ErrorModel::Paper(), 0.995);
   m.settings.best_with_neighbours = true;
   BayesLocalizer b(index_, m);
   BayesLocalizer single = MakeLocalizer(index_, ErrorModel::Paper(), 0.995);
@@ -278,9 +281,7 @@ TEST_F(BayesLocalizerTest, WithItsNeighboursTheBestPlaceHoldsTheBeliefAroundIt) 
 // A place is published only where the belief peaks: walls 8 and 10 either side of a door
 // the filter is split on (was it missed?) do not make the door between them the place.
 TEST_F(BayesLocalizerTest, WithItsNeighboursTheBestPlaceIsWhereTheBeliefPeaks) {
-  BayesModel m;
-  m.confusion = Resolve(ErrorModel::Paper(), index_);
-  m.noise = SensingNoise{};
+  BayesModel m = ModelOf(index_, ErrorModel::Paper(), 0.99);
   m.settings.best_with_neighbours = true;
   BayesLocalizer b(index_, m);
   b.Add(Wall(150, kNaN, true));
